@@ -1,0 +1,175 @@
+//! Time integrators: the `System` a method advances, the typed failures and work counters a
+//! run reports, and the two method traits (fixed-step one-step methods, adaptive whole-span
+//! methods). One file per method family lives beside this one.
+//!
+//! A `System` separates the state (what is stored: a quaternion has 4 numbers) from its
+//! increment (`Tangent`: 3 numbers on SO(3)). `retract(x, dx)` is `x + dx` on additive charts
+//! and `x * exp(dx)` (or `exp(dx) * x`) on Lie groups; `rhs` returns coordinate rates on
+//! additive charts and the trivialised velocity on Lie groups; `dexp_inv` turns a velocity
+//! into the rate of a stage increment (identity on additive charts). With these three, one
+//! Runge-Kutta code is classical RK on vectors and Runge-Kutta-Munthe-Kaas on Lie groups
+//! (Munthe-Kaas 1998; Iserles et al., Acta Numerica 2000, sec. 5.3).
+//!
+//! Invariants: methods never allocate per step (workspaces live in the method struct), never
+//! panic on a bad state (a non-finite value or a singular chart becomes a typed `Failure`),
+//! and count every right-hand-side evaluation and Newton iteration in `Stats`.
+use serde::{Deserialize, Serialize};
+
+use crate::math::vector::Vector;
+
+pub mod explicit_rk;
+
+/// A dynamical system on a state space with a retraction.
+pub trait System: Send + Sync {
+    /// The stored state.
+    type State: Copy + std::fmt::Debug + Send + Sync;
+    /// Its increment (an element of R^n).
+    type Tangent: Vector;
+    /// `retract` is a group action and `dexp_inv` is not the identity.
+    const LIE: bool;
+    /// The vector field at `(t, x)`: coordinate rates, or the trivialised velocity on a Lie group.
+    fn rhs(&self, t: f64, x: &Self::State) -> Self::Tangent;
+    /// `x (+) dx`.
+    fn retract(&self, x: &Self::State, dx: &Self::Tangent) -> Self::State;
+    /// Rate of the increment `theta` of `x (+) theta` whose velocity is `v`; identity on
+    /// additive spaces.
+    fn dexp_inv(&self, theta: &Self::Tangent, v: &Self::Tangent) -> Self::Tangent {
+        let _ = theta;
+        *v
+    }
+    /// Projection or re-charting after a step; returns whether it changed the state.
+    fn normalize(&self, x: &mut Self::State) -> bool {
+        let _ = x;
+        false
+    }
+    /// A typed failure when the state is non-finite or its chart is singular.
+    fn check(&self, t: f64, x: &Self::State) -> Result<(), Failure>;
+}
+
+/// Why a run ended early (design.md, "Files": failure kinds).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FailureKind {
+    /// The chart's conditioning fell to 1e-12 or below.
+    SingularChart,
+    /// A state component became NaN or infinite.
+    NonFinite,
+    /// Newton's method did not converge.
+    NewtonFailure,
+    /// An adaptive method's step fell below its floor.
+    StepSizeUnderflow,
+    /// The run exceeded its step or RHS-evaluation budget.
+    WorkLimit,
+    /// A case's own bound was crossed.
+    Diverged,
+    /// A stability-study bound was crossed.
+    BoundExceeded,
+}
+
+/// A typed failure: what, when, and a sentence for the report.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Failure {
+    pub kind: FailureKind,
+    pub t: f64,
+    pub message: String,
+}
+
+impl Failure {
+    pub fn new(kind: FailureKind, t: f64, message: impl Into<String>) -> Self {
+        Failure {
+            kind,
+            t,
+            message: message.into(),
+        }
+    }
+}
+
+/// Deterministic work counters of one run.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Stats {
+    pub steps: u64,
+    pub rhs_evals: u64,
+    pub newton_iters: u64,
+    pub rejected: u64,
+    pub normalizations: u64,
+}
+
+/// Per-run budgets; exceeding one is a `work_limit` failure.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    pub max_steps: u64,
+    pub max_rhs_evals: u64,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_steps: 100_000_000,
+            max_rhs_evals: 2_000_000_000,
+        }
+    }
+}
+
+impl Limits {
+    /// `work_limit` failure if a budget is exhausted.
+    pub fn check(&self, t: f64, stats: &Stats) -> Result<(), Failure> {
+        if stats.steps > self.max_steps {
+            return Err(Failure::new(
+                FailureKind::WorkLimit,
+                t,
+                format!("more than max_steps = {} steps", self.max_steps),
+            ));
+        }
+        if stats.rhs_evals > self.max_rhs_evals {
+            return Err(Failure::new(
+                FailureKind::WorkLimit,
+                t,
+                format!("more than max_rhs_evals = {} evaluations", self.max_rhs_evals),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// What a method is, as data (reported and used by the registry and the order tests).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct MethodInfo {
+    pub name: &'static str,
+    pub order: u32,
+    pub stages: u32,
+    pub implicit: bool,
+    pub symplectic: bool,
+    pub lie_group: bool,
+    pub energy_conserving: bool,
+    pub adaptive: bool,
+}
+
+/// A fixed-step one-step method. The caller normalizes and checks the state after each step.
+pub trait FixedStep<S: System> {
+    fn info(&self) -> MethodInfo;
+    /// Advances `x` from `t` to `t + h`.
+    fn step(
+        &mut self,
+        sys: &S,
+        t: f64,
+        h: f64,
+        x: &mut S::State,
+        stats: &mut Stats,
+    ) -> Result<(), Failure>;
+}
+
+/// An adaptive method: it advances over a whole span with its own step control, keeping the
+/// controller state between calls; it normalizes and checks after each accepted step.
+pub trait Adaptive<S: System> {
+    fn info(&self) -> MethodInfo;
+    /// Advances `x` from `t0` to exactly `t1`.
+    fn advance(
+        &mut self,
+        sys: &S,
+        t0: f64,
+        t1: f64,
+        x: &mut S::State,
+        stats: &mut Stats,
+        limits: &Limits,
+    ) -> Result<(), Failure>;
+}

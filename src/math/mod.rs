@@ -1,0 +1,3 @@
+//! Mathematical building blocks: small vector spaces, SO(3)/SE(3) maps, elliptic functions.
+pub mod so3;
+pub mod vector;

@@ -1,0 +1,2 @@
+//! Physical models, one file each.
+pub mod rigid_body;

@@ -1,0 +1,317 @@
+//! The rigid-body model: a body with full inertia, optional geometrically exact linear
+//! springs to fixed anchors, optional uniform gravity, and an optional fixed pivot; and
+//! `RigidSystem<C, F>`, its Newton-Euler equations in a chosen pose chart `C` and
+//! formulation `F`, as a `System` for the integrators.
+//!
+//! Equations (spec/cases.md sec. 1 and 4; Bongardt & Kirchner for the two formulations):
+//! - body:    `xddot = f/m`, `J omega' = R^T tau - omega x J omega`, `R' = R [omega]x`,
+//!   velocity state `(v, omega)` = (world velocity of the centre of mass, body angular velocity);
+//! - spatial: `w' = J_w^{-1} (tau - w x J_w w)`, `J_w = R J R^T`, `v_s' = xddot - w' x x - w x xdot`,
+//!   `R' = [w]x R`, `x' = v_s + w x x`, velocity state `(v_s, w)`, the spatial twist.
+//!
+//! Here `f` is the world force on the centre of mass and `tau` the world torque about the
+//! reference point: the centre of mass for a free body, the pivot (world origin) for a pinned
+//! one, whose `J` is then the inertia about the pivot (`J_O = J_C + m (|X|^2 I - X X^T)`) and
+//! whose translation is frozen at zero. Spring `i`: `p_i = x + R b_i`, `l_i = |a_i - p_i|`,
+//! `f_i = k (l_i - L0) (a_i - p_i) / l_i`; gravity `-m g0 e_z`, potential `m g0 z_com`.
+//! Terms a scene does not have are absent (no springs loop, no gravity branch does work).
+//! A spring of zero current length has an undefined direction: its force is then taken as 0
+//! (the energy is still continuous there); no case comes near it.
+use nalgebra::{Matrix3, UnitQuaternion, Vector3, Vector6};
+use std::marker::PhantomData;
+
+use crate::integrate::{Failure, FailureKind, System};
+use crate::rotation::{Formulation, PoseChart};
+
+/// A linear spring from a body point to a fixed world anchor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spring {
+    /// Body-frame point, relative to the centre of mass (m).
+    pub body_point: Vector3<f64>,
+    /// World-frame anchor (m).
+    pub anchor: Vector3<f64>,
+    /// N/m.
+    pub stiffness: f64,
+    /// m.
+    pub rest_length: f64,
+}
+
+/// A rigid body and the force elements acting on it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RigidBody {
+    /// kg.
+    pub mass: f64,
+    /// Inertia about the reference point (centre of mass, or pivot), body frame (kg m^2).
+    pub inertia: Matrix3<f64>,
+    /// Its inverse.
+    pub inertia_inv: Matrix3<f64>,
+    /// Springs (empty: no spring term).
+    pub springs: Vec<Spring>,
+    /// `g0` along `-z` (None: no gravity term).
+    pub gravity: Option<f64>,
+    /// Body-frame position of the centre of mass relative to a fixed pivot at the world origin
+    /// (None: the body is free and translates).
+    pub pivot_com: Option<Vector3<f64>>,
+}
+
+/// The physical state of a rigid body, independent of any chart.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Observation {
+    pub q: UnitQuaternion<f64>,
+    /// World position of the reference point (0 for a pinned body).
+    pub x: Vector3<f64>,
+    /// World velocity of the reference point.
+    pub v: Vector3<f64>,
+    /// Body angular velocity.
+    pub omega: Vector3<f64>,
+}
+
+impl RigidBody {
+    /// A body with inertia `inertia_com` about its centre of mass; with `pivot_com`, the
+    /// stored inertia is moved to the pivot by the parallel-axis theorem.
+    pub fn new(
+        mass: f64,
+        inertia_com: Matrix3<f64>,
+        springs: Vec<Spring>,
+        gravity: Option<f64>,
+        pivot_com: Option<Vector3<f64>>,
+    ) -> Option<Self> {
+        let inertia = match pivot_com {
+            Some(x) => inertia_com + (Matrix3::identity() * x.norm_squared() - x * x.transpose()) * mass,
+            None => inertia_com,
+        };
+        let inertia_inv = inertia.try_inverse()?;
+        Some(RigidBody {
+            mass,
+            inertia,
+            inertia_inv,
+            springs,
+            gravity: gravity.filter(|g| *g != 0.0),
+            pivot_com,
+        })
+    }
+
+    /// Whether the body translates (no pivot).
+    #[inline(always)]
+    pub fn translates(&self) -> bool {
+        self.pivot_com.is_none()
+    }
+
+    /// World force on the centre of mass and world torque about the reference point.
+    #[inline(always)]
+    pub fn wrench(&self, r: &Matrix3<f64>, x: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+        let mut f = Vector3::zeros();
+        let mut tau = Vector3::zeros();
+        for s in &self.springs {
+            let rb = r * s.body_point;
+            let d = s.anchor - (x + rb);
+            let l = d.norm();
+            if l > 0.0 {
+                let fi = d * (s.stiffness * (l - s.rest_length) / l);
+                f += fi;
+                tau += rb.cross(&fi);
+            }
+        }
+        if let Some(g) = self.gravity {
+            let fg = Vector3::new(0.0, 0.0, -self.mass * g);
+            f += fg;
+            if let Some(c) = self.pivot_com {
+                tau += (r * c).cross(&fg);
+            }
+        }
+        (f, tau)
+    }
+
+    /// Potential energy of the springs and of gravity.
+    #[inline]
+    pub fn potential(&self, r: &Matrix3<f64>, x: &Vector3<f64>) -> f64 {
+        let mut e = 0.0;
+        for s in &self.springs {
+            let l = (s.anchor - (x + r * s.body_point)).norm();
+            e += 0.5 * s.stiffness * (l - s.rest_length).powi(2);
+        }
+        if let Some(g) = self.gravity {
+            let z = match self.pivot_com {
+                Some(c) => (r * c).z,
+                None => x.z,
+            };
+            e += self.mass * g * z;
+        }
+        e
+    }
+
+    /// Kinetic energy (translation only for a free body).
+    #[inline]
+    pub fn kinetic(&self, v: &Vector3<f64>, omega: &Vector3<f64>) -> f64 {
+        let rot = 0.5 * omega.dot(&(self.inertia * omega));
+        if self.translates() {
+            rot + 0.5 * self.mass * v.norm_squared()
+        } else {
+            rot
+        }
+    }
+
+    /// Total energy of an observed state.
+    pub fn energy(&self, o: &Observation) -> f64 {
+        let r = o.q.to_rotation_matrix().into_inner();
+        self.kinetic(&o.v, &o.omega) + self.potential(&r, &o.x)
+    }
+
+    /// World angular momentum about the reference point (centre of mass, or pivot).
+    pub fn angular_momentum(&self, o: &Observation) -> Vector3<f64> {
+        o.q * (self.inertia * o.omega)
+    }
+}
+
+/// The rigid body's equations in chart `C` and formulation `F`.
+#[derive(Debug, Clone)]
+pub struct RigidSystem<C: PoseChart, F: Formulation> {
+    pub body: RigidBody,
+    _m: PhantomData<(C, F)>,
+}
+
+/// State: the chart's pose coordinates and the velocity 6-vector `(v, omega)` (body
+/// formulation: world velocity of the reference point and body angular velocity; spatial:
+/// the spatial twist `(v_s, w)`).
+#[derive(Debug, Clone, Copy)]
+pub struct RigidState<P: Copy> {
+    pub pose: P,
+    pub vel: Vector6<f64>,
+}
+
+impl<C: PoseChart, F: Formulation> RigidSystem<C, F> {
+    pub fn new(body: RigidBody) -> Self {
+        RigidSystem {
+            body,
+            _m: PhantomData,
+        }
+    }
+
+    /// The state of the physical pose `(q, x)` and velocities `(v world, omega body)`.
+    pub fn state_from(&self, o: &Observation) -> RigidState<C::Coords> {
+        let r = o.q.to_rotation_matrix().into_inner();
+        let pose = C::from_pose(&r, &o.x);
+        let vel = if F::SPATIAL {
+            let w = r * o.omega;
+            let vs = o.v - w.cross(&o.x);
+            Vector6::new(vs.x, vs.y, vs.z, w.x, w.y, w.z)
+        } else {
+            Vector6::new(o.v.x, o.v.y, o.v.z, o.omega.x, o.omega.y, o.omega.z)
+        };
+        RigidState { pose, vel }
+    }
+
+    /// The physical state of `s`.
+    pub fn observe(&self, s: &RigidState<C::Coords>) -> Observation {
+        let r = C::rotation(&s.pose);
+        let x = C::position(&s.pose);
+        let (omega, v) = self.body_velocities(&r, &x, &s.vel);
+        Observation {
+            q: C::quaternion(&s.pose),
+            x,
+            v,
+            omega,
+        }
+    }
+
+    /// `(omega_body, xdot)` from the velocity state.
+    #[inline(always)]
+    fn body_velocities(
+        &self,
+        r: &Matrix3<f64>,
+        x: &Vector3<f64>,
+        vel: &Vector6<f64>,
+    ) -> (Vector3<f64>, Vector3<f64>) {
+        let v = vel.fixed_rows::<3>(0).into_owned();
+        let w = vel.fixed_rows::<3>(3).into_owned();
+        if F::SPATIAL {
+            let xdot = if self.body.translates() {
+                v + w.cross(x)
+            } else {
+                Vector3::zeros()
+            };
+            (r.transpose() * w, xdot)
+        } else {
+            (w, v)
+        }
+    }
+}
+
+impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
+    type State = RigidState<C::Coords>;
+    type Tangent = (C::Tangent, Vector6<f64>);
+    const LIE: bool = C::LIE;
+
+    #[inline(always)]
+    fn rhs(&self, _t: f64, s: &Self::State) -> Self::Tangent {
+        let b = &self.body;
+        let r = C::rotation(&s.pose);
+        let x = C::position(&s.pose);
+        let (omega_b, xdot) = self.body_velocities(&r, &x, &s.vel);
+        let (f, tau) = b.wrench(&r, &x);
+        let xddot = if b.translates() {
+            f / b.mass
+        } else {
+            Vector3::zeros()
+        };
+        let acc = if F::SPATIAL {
+            let w = s.vel.fixed_rows::<3>(3).into_owned();
+            // J_w^{-1} (tau - w x J_w w) = R J^{-1} (R^T tau - omega x J omega)
+            let jo = b.inertia * omega_b;
+            let wdot = r * (b.inertia_inv * (r.transpose() * tau - omega_b.cross(&jo)));
+            let vsdot = if b.translates() {
+                xddot - wdot.cross(&x) - w.cross(&xdot)
+            } else {
+                Vector3::zeros()
+            };
+            Vector6::new(vsdot.x, vsdot.y, vsdot.z, wdot.x, wdot.y, wdot.z)
+        } else {
+            let jo = b.inertia * omega_b;
+            let od = b.inertia_inv * (r.transpose() * tau - omega_b.cross(&jo));
+            Vector6::new(xddot.x, xddot.y, xddot.z, od.x, od.y, od.z)
+        };
+        (C::velocity(&s.pose, &r, &omega_b, &xdot, F::SPATIAL), acc)
+    }
+
+    #[inline(always)]
+    fn retract(&self, s: &Self::State, d: &Self::Tangent) -> Self::State {
+        RigidState {
+            pose: C::retract(&s.pose, &d.0, F::SPATIAL),
+            vel: s.vel + d.1,
+        }
+    }
+
+    #[inline(always)]
+    fn dexp_inv(&self, theta: &Self::Tangent, v: &Self::Tangent) -> Self::Tangent {
+        if C::LIE {
+            (C::dexp_inv(&theta.0, &v.0, F::SPATIAL), v.1)
+        } else {
+            *v
+        }
+    }
+
+    #[inline(always)]
+    fn normalize(&self, s: &mut Self::State) -> bool {
+        C::NORMALIZES && C::normalize(&mut s.pose)
+    }
+
+    #[inline]
+    fn check(&self, t: f64, s: &Self::State) -> Result<(), Failure> {
+        if !C::is_finite(&s.pose) || !s.vel.iter().all(|v| v.is_finite()) {
+            return Err(Failure::new(
+                FailureKind::NonFinite,
+                t,
+                "state has a non-finite component",
+            ));
+        }
+        let c = C::conditioning(&s.pose);
+        if c <= 1e-12 {
+            return Err(Failure::new(
+                FailureKind::SingularChart,
+                t,
+                format!("{} chart conditioning {c:.3e} <= 1e-12", C::NAME),
+            ));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,109 @@
+//! Rotation parameterizations ("charts") of a rigid body's pose, behind one trait.
+//!
+//! A `PoseChart` stores the rotation (and, for the SE(3) charts, the translation together
+//! with it) in its own numbers and knows: the map to and from a rotation matrix, its
+//! kinematic map (body angular velocity -> coordinate rates, or the trivialised velocity on a
+//! Lie group), `retract`, `dexp_inv`, its own constraint residual, a conditioning number that
+//! is 0 on its singular set, and an optional `normalize` (projection or re-charting).
+//! For the charts that keep the translation separately, `x` is an additive R^3 inside the
+//! chart's coordinates, so every chart describes the whole pose `(R, x)`.
+//!
+//! Lie-group charts use the right (body) trivialisation `g exp(theta)` with the body formulation
+//! and the left (spatial) one `exp(theta) g` with the spatial formulation (`spatial = true`);
+//! additive charts ignore `spatial`.
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use std::fmt::Debug;
+
+use crate::math::so3;
+use crate::math::vector::Vector;
+
+/// A parameterization of a rigid body's pose.
+pub trait PoseChart: Send + Sync + 'static {
+    /// The variant name (design.md, "Variant names").
+    const NAME: &'static str;
+    /// The stored numbers.
+    type Coords: Copy + Debug + Send + Sync;
+    /// The increment of the pose.
+    type Tangent: Vector;
+    /// Retract is a group action and `dexp_inv` is not the identity (RKMK applies).
+    const LIE: bool;
+    /// Rotation and translation move together on SE(3) (not applicable with a fixed pivot).
+    const SE3: bool;
+    /// The chart has a constraint (redundant coordinates): `residual` is `Some`.
+    const CONSTRAINED: bool;
+    /// The chart normalizes (projects or re-charts) after each step.
+    const NORMALIZES: bool;
+
+    /// Coordinates of the pose `(R, x)` (principal branch for multi-valued charts).
+    fn from_pose(r: &Matrix3<f64>, x: &Vector3<f64>) -> Self::Coords;
+    /// The rotation matrix.
+    fn rotation(c: &Self::Coords) -> Matrix3<f64>;
+    /// The rotation as a unit quaternion.
+    fn quaternion(c: &Self::Coords) -> UnitQuaternion<f64> {
+        so3::quat_from_matrix(&Self::rotation(c))
+    }
+    /// The translation.
+    fn position(c: &Self::Coords) -> Vector3<f64>;
+    /// The pose velocity: coordinate rates (additive charts) or the trivialised velocity (Lie
+    /// charts: body twist when `!spatial`, spatial twist when `spatial`), from the body angular
+    /// velocity `omega_body` and the world velocity `xdot` of the translation. `r` is
+    /// `rotation(c)`, passed in because the caller has it.
+    fn velocity(
+        c: &Self::Coords,
+        r: &Matrix3<f64>,
+        omega_body: &Vector3<f64>,
+        xdot: &Vector3<f64>,
+        spatial: bool,
+    ) -> Self::Tangent;
+    /// `c (+) d`.
+    fn retract(c: &Self::Coords, d: &Self::Tangent, spatial: bool) -> Self::Coords;
+    /// The RKMK correction: rate of the increment `theta` whose velocity is `v` (identity for
+    /// additive charts).
+    fn dexp_inv(theta: &Self::Tangent, v: &Self::Tangent, spatial: bool) -> Self::Tangent;
+    /// The chart's own constraint residual (`||q|^2 - 1|`, `|R^T R - I|`, ...), `None` for
+    /// minimal charts.
+    fn residual(c: &Self::Coords) -> Option<f64>;
+    /// Distance-like number that is 0 on the chart's singular set (1 where it has none).
+    fn conditioning(c: &Self::Coords) -> f64;
+    /// Projection or re-charting; returns whether it was applied.
+    fn normalize(c: &mut Self::Coords) -> bool;
+    /// Whether all stored numbers are finite.
+    fn is_finite(c: &Self::Coords) -> bool;
+}
+
+/// Newton-Euler formulation (design.md): equations and velocities in the body frame, or the
+/// twist and equations in the world frame (Bongardt & Kirchner, general-coordinates
+/// Newton-Euler).
+pub trait Formulation: Send + Sync + 'static {
+    const SPATIAL: bool;
+    const NAME: &'static str;
+}
+
+/// Body formulation: velocity state `(v, omega)` = (world velocity of the reference point,
+/// body angular velocity); Euler's equations in the body frame.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Body;
+/// Spatial formulation: velocity state = the spatial twist `(v_s, w)`, `w = R omega`,
+/// `v_s = xdot - w x x`; equations in the world frame.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Spatial;
+
+impl Formulation for Body {
+    const SPATIAL: bool = false;
+    const NAME: &'static str = "body";
+}
+impl Formulation for Spatial {
+    const SPATIAL: bool = true;
+    const NAME: &'static str = "spatial";
+}
+
+pub mod so3;
+
+/// Coordinates of a chart that keeps the translation as a separate additive R^3.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pose<Q: Copy> {
+    /// The rotation's coordinates.
+    pub rot: Q,
+    /// The translation (m, world).
+    pub x: Vector3<f64>,
+}
