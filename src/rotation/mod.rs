@@ -97,7 +97,8 @@ impl Formulation for Spatial {
     const NAME: &'static str = "spatial";
 }
 
-pub mod so3;
+mod so3_chart;
+pub use so3_chart::So3;
 
 /// Coordinates of a chart that keeps the translation as a separate additive R^3.
 #[derive(Debug, Clone, Copy, PartialEq)]
