@@ -44,6 +44,11 @@ pub trait System: Send + Sync {
     }
     /// A typed failure when the state is non-finite or its chart is singular.
     fn check(&self, t: f64, x: &Self::State) -> Result<(), Failure>;
+    /// The chart's conditioning at `x` (0 on its singular set; 1 where it has none).
+    fn conditioning(&self, x: &Self::State) -> f64 {
+        let _ = x;
+        1.0
+    }
 }
 
 /// Why a run ended early (design.md, "Files": failure kinds).

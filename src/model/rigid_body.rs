@@ -304,7 +304,7 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
                 "state has a non-finite component",
             ));
         }
-        let c = C::conditioning(&s.pose);
+        let c = self.conditioning(s);
         if c <= 1e-12 {
             return Err(Failure::new(
                 FailureKind::SingularChart,
@@ -313,5 +313,10 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
             ));
         }
         Ok(())
+    }
+
+    #[inline(always)]
+    fn conditioning(&self, s: &Self::State) -> f64 {
+        C::conditioning(&s.pose)
     }
 }
