@@ -3,3 +3,6 @@ pub mod integrate;
 pub mod math;
 pub mod model;
 pub mod rotation;
+pub mod run;
+pub mod reference;
+pub mod metrics;

@@ -320,3 +320,82 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
         C::conditioning(&s.pose)
     }
 }
+
+impl RigidBody {
+    /// The angular-momentum components this body conserves, and `|L|` for scaling: every
+    /// world component of `L` about the centre of mass for a torque-free body; for a pinned
+    /// body under gravity the vertical world component about the pivot and, when the body is
+    /// axisymmetric about the axis through the pivot and the centre of mass, the spin
+    /// `J_C,aa Omega_a` about that axis (Lagrange top); none with springs. Returns the number of
+    /// components written into the array.
+    pub fn conserved_momenta(&self, o: &Observation) -> ([f64; 4], usize, f64) {
+        let l = self.angular_momentum(o);
+        let mut out = [0.0; 4];
+        if !self.springs.is_empty() {
+            return (out, 0, l.norm());
+        }
+        match (self.gravity, self.pivot_com) {
+            (None, _) => {
+                out[..3].copy_from_slice(l.as_slice());
+                (out, 3, l.norm())
+            }
+            (Some(_), Some(c)) => {
+                out[0] = l.z;
+                let mut n = 1;
+                if let Some(axis) = self.symmetry_axis(&c) {
+                    out[1] = (self.inertia * o.omega).dot(&axis);
+                    n = 2;
+                }
+                (out, n, l.norm())
+            }
+            (Some(_), None) => {
+                // Free fall: L about the centre of mass is conserved.
+                out[..3].copy_from_slice(l.as_slice());
+                (out, 3, l.norm())
+            }
+        }
+    }
+
+    /// The unit axis through the pivot and the centre of mass when the inertia about the pivot
+    /// is axisymmetric about it (then the spin about it is conserved), else None.
+    fn symmetry_axis(&self, com: &Vector3<f64>) -> Option<Vector3<f64>> {
+        let n = com.norm();
+        if n == 0.0 {
+            return None;
+        }
+        let a = com / n;
+        // Axisymmetric about `a`: J a parallel to a and J equal on the plane normal to a.
+        let ja = self.inertia * a;
+        let along = ja.dot(&a);
+        if (ja - a * along).norm() > 1e-12 * self.inertia.norm() {
+            return None;
+        }
+        let p = if a.x.abs() < 0.9 {
+            Vector3::x()
+        } else {
+            Vector3::y()
+        };
+        let u = (p - a * a.dot(&p)).normalize();
+        let v = a.cross(&u);
+        let (juu, jvv, juv) = (
+            u.dot(&(self.inertia * u)),
+            v.dot(&(self.inertia * v)),
+            u.dot(&(self.inertia * v)),
+        );
+        let s = self.inertia.norm();
+        if (juu - jvv).abs() <= 1e-12 * s && juv.abs() <= 1e-12 * s {
+            Some(a)
+        } else {
+            None
+        }
+    }
+}
+
+impl<C: PoseChart, F: Formulation> crate::run::Observable for RigidSystem<C, F> {
+    fn observe(&self, s: &Self::State) -> Observation {
+        RigidSystem::observe(self, s)
+    }
+    fn residual(&self, s: &Self::State) -> Option<f64> {
+        C::residual(&s.pose)
+    }
+}

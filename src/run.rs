@@ -1,0 +1,265 @@
+//! The run loop: integrate one scene with one variant, observe the state at the sample
+//! times, track the chart's conditioning every step, and return the samples, the work
+//! counters and the typed failure, if any. Scoring (metrics) and timing live elsewhere.
+//!
+//! Time grid (design.md, "Determinism"): a fixed-step run takes exactly `n = round(T/h)`
+//! steps of `h = T/n` with `t_k = t0 + k h` computed from the integer `k`, so the same build on
+//! the same input gives bit-identical results. Samples are taken on the scene's sample grid
+//! when the step divides `sample_every`, otherwise on the score grid (every ladder step
+//! divides `score_every`, spec/cases.md), always including `t_end`. Adaptive methods advance
+//! from output time to output time (the last step of each segment is clipped to land on
+//! it). A failure ends the run: the samples up to it are kept, the failure records its time.
+//! The loop never allocates per step (the sample vector is reserved up front) and observes
+//! only at output times.
+use crate::integrate::{Adaptive, Failure, FixedStep, Limits, Stats, System};
+use crate::model::rigid_body::Observation;
+
+/// What a run needs to observe of a state (chart-independent physical state, chart
+/// diagnostics).
+pub trait Observable: System {
+    /// The physical state.
+    fn observe(&self, x: &Self::State) -> Observation;
+    /// The chart's own constraint residual (None for minimal charts).
+    fn residual(&self, x: &Self::State) -> Option<f64>;
+}
+
+/// How a run steps: a fixed step or an adaptive tolerance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Stepping {
+    Dt(f64),
+    Tol(f64),
+}
+
+/// The time grid of a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grid {
+    pub t_end: f64,
+    pub sample_every: f64,
+    pub score_every: f64,
+}
+
+/// One observation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    pub t: f64,
+    pub obs: Observation,
+    pub conditioning: f64,
+    pub residual: Option<f64>,
+}
+
+/// The outcome of a run.
+#[derive(Debug, Clone)]
+pub struct RunOutput {
+    pub samples: Vec<Sample>,
+    /// Index stride of the score grid within `samples`.
+    pub score_stride: usize,
+    pub failure: Option<Failure>,
+    pub stats: Stats,
+    /// Minimum of the chart's conditioning over every step.
+    pub conditioning_min: f64,
+}
+
+impl RunOutput {
+    /// The samples on the score grid (every `score_stride`-th).
+    pub fn scored(&self) -> impl Iterator<Item = &Sample> {
+        self.samples.iter().step_by(self.score_stride.max(1))
+    }
+}
+
+/// `Some(n)` when `h` divides `span` by the rule of spec/cases.md: `n = round(span/h)` and
+/// `|n h - span| <= 1e-9 span`.
+pub fn divides(span: f64, h: f64) -> Option<u64> {
+    if !(span > 0.0 && h > 0.0 && span.is_finite() && h.is_finite()) {
+        return None;
+    }
+    let n = (span / h).round();
+    if n >= 1.0 && n < 1e15 && (n * h - span).abs() <= 1e-9 * span {
+        Some(n as u64)
+    } else {
+        None
+    }
+}
+
+/// Output grid for a run: `(output interval, number of outputs, outputs per score point)`.
+/// Uses the sample grid when `h` (if fixed) divides `sample_every`, else the score grid.
+fn output_grid(grid: &Grid, h: Option<f64>) -> Result<(f64, u64, usize), String> {
+    let n_score = divides(grid.t_end, grid.score_every).ok_or_else(|| {
+        format!(
+            "score_every = {} does not divide t_end = {}",
+            grid.score_every, grid.t_end
+        )
+    })?;
+    let per_score = divides(grid.score_every, grid.sample_every);
+    let use_sample = match (per_score, h) {
+        (None, _) => false,
+        (Some(_), None) => true,
+        (Some(_), Some(h)) => divides(grid.sample_every, h).is_some(),
+    };
+    if use_sample {
+        let k = per_score.unwrap_or(1);
+        Ok((grid.score_every / k as f64, n_score * k, k as usize))
+    } else {
+        Ok((grid.score_every, n_score, 1))
+    }
+}
+
+fn sample<S: Observable>(sys: &S, t: f64, x: &S::State) -> Sample {
+    Sample {
+        t,
+        obs: sys.observe(x),
+        conditioning: sys.conditioning(x),
+        residual: sys.residual(x),
+    }
+}
+
+/// Runs a fixed-step method over the grid from `x0`.
+pub fn run_fixed<S: Observable, M: FixedStep<S>>(
+    sys: &S,
+    method: &mut M,
+    x0: S::State,
+    h_nominal: f64,
+    grid: &Grid,
+    limits: &Limits,
+) -> Result<RunOutput, String> {
+    let n_total = divides(grid.t_end, h_nominal)
+        .ok_or_else(|| format!("step {h_nominal} does not divide t_end = {}", grid.t_end))?;
+    let (dt_out, n_out, stride) = output_grid(grid, Some(h_nominal))?;
+    let per_out = divides(dt_out, h_nominal)
+        .ok_or_else(|| format!("step {h_nominal} does not divide the output interval {dt_out}"))?;
+    if per_out * n_out != n_total {
+        return Err(format!("inconsistent grid: {per_out} x {n_out} != {n_total} steps"));
+    }
+    let h = grid.t_end / n_total as f64;
+    let mut out = RunOutput {
+        samples: Vec::with_capacity(n_out as usize + 1),
+        score_stride: stride,
+        failure: None,
+        stats: Stats::default(),
+        conditioning_min: f64::INFINITY,
+    };
+    let mut x = x0;
+    if let Err(f) = sys.check(0.0, &x) {
+        out.conditioning_min = sys.conditioning(&x);
+        out.failure = Some(f);
+        return Ok(out);
+    }
+    out.conditioning_min = sys.conditioning(&x);
+    out.samples.push(sample(sys, 0.0, &x));
+    let mut k: u64 = 0;
+    for _ in 0..n_out {
+        for _ in 0..per_out {
+            let t = k as f64 * h;
+            let r = method.step(sys, t, h, &mut x, &mut out.stats);
+            k += 1;
+            out.stats.steps += 1;
+            let t1 = k as f64 * h;
+            let r = r.and_then(|_| {
+                if sys.normalize(&mut x) {
+                    out.stats.normalizations += 1;
+                }
+                sys.check(t1, &x)
+            });
+            if let Err(f) = r.and_then(|_| limits.check(t1, &out.stats)) {
+                out.failure = Some(f);
+                return Ok(out);
+            }
+            let c = sys.conditioning(&x);
+            if c < out.conditioning_min {
+                out.conditioning_min = c;
+            }
+        }
+        out.samples.push(sample(sys, k as f64 * h, &x));
+    }
+    Ok(out)
+}
+
+/// A `System` wrapper that records the minimum conditioning seen by `check` (adaptive
+/// methods check after every accepted step internally).
+pub struct Watched<S: System> {
+    inner: S,
+    min_bits: std::sync::atomic::AtomicU64,
+}
+
+impl<S: System> System for Watched<S> {
+    type State = S::State;
+    type Tangent = S::Tangent;
+    const LIE: bool = S::LIE;
+    #[inline(always)]
+    fn rhs(&self, t: f64, x: &S::State) -> S::Tangent {
+        self.inner.rhs(t, x)
+    }
+    #[inline(always)]
+    fn retract(&self, x: &S::State, dx: &S::Tangent) -> S::State {
+        self.inner.retract(x, dx)
+    }
+    #[inline(always)]
+    fn dexp_inv(&self, theta: &S::Tangent, v: &S::Tangent) -> S::Tangent {
+        self.inner.dexp_inv(theta, v)
+    }
+    #[inline(always)]
+    fn normalize(&self, x: &mut S::State) -> bool {
+        self.inner.normalize(x)
+    }
+    #[inline]
+    fn check(&self, t: f64, x: &S::State) -> Result<(), Failure> {
+        use std::sync::atomic::Ordering::Relaxed;
+        let c = self.inner.conditioning(x);
+        if c < f64::from_bits(self.min_bits.load(Relaxed)) {
+            self.min_bits.store(c.to_bits(), Relaxed);
+        }
+        self.inner.check(t, x)
+    }
+    fn conditioning(&self, x: &S::State) -> f64 {
+        self.inner.conditioning(x)
+    }
+}
+
+impl<S: System> Watched<S> {
+    /// Wraps `inner` (a copy of the system, made once per run).
+    pub fn new(inner: S) -> Self {
+        Watched {
+            inner,
+            min_bits: std::sync::atomic::AtomicU64::new(f64::INFINITY.to_bits()),
+        }
+    }
+}
+
+/// Runs an adaptive method over the grid from `x0`, output time to output time.
+pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
+    sys: &S,
+    method: &mut M,
+    x0: S::State,
+    grid: &Grid,
+    limits: &Limits,
+) -> Result<RunOutput, String> {
+    let (dt_out, n_out, stride) = output_grid(grid, None)?;
+    let w = Watched::new(sys.clone());
+    let mut out = RunOutput {
+        samples: Vec::with_capacity(n_out as usize + 1),
+        score_stride: stride,
+        failure: None,
+        stats: Stats::default(),
+        conditioning_min: f64::INFINITY,
+    };
+    let mut x = x0;
+    let first = w.check(0.0, &x);
+    out.conditioning_min = sys.conditioning(&x);
+    if let Err(f) = first {
+        out.failure = Some(f);
+        return Ok(out);
+    }
+    out.samples.push(sample(sys, 0.0, &x));
+    for k in 0..n_out {
+        let t0 = k as f64 * dt_out;
+        let t1 = (k + 1) as f64 * dt_out;
+        let r = method.advance(&w, t0, t1, &mut x, &mut out.stats, limits);
+        let c = f64::from_bits(w.min_bits.load(std::sync::atomic::Ordering::Relaxed));
+        out.conditioning_min = out.conditioning_min.min(c);
+        if let Err(f) = r {
+            out.failure = Some(f);
+            return Ok(out);
+        }
+        out.samples.push(sample(sys, t1, &x));
+    }
+    Ok(out)
+}
