@@ -6,3 +6,4 @@ pub mod rotation;
 pub mod run;
 pub mod reference;
 pub mod metrics;
+pub mod summary;

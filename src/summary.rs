@@ -1,0 +1,207 @@
+//! `summary.json` (design.md, "Files", contract): one record per run with its metrics, work
+//! counters and timing, the order fits, and the environment that produced them; plus the
+//! per-run series files. Written atomically. Also the build/environment facts (`Env`) and a
+//! UTC timestamp without a date library.
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+use crate::integrate::{Failure, Stats};
+
+/// A run's status.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Status {
+    #[serde(rename = "ok")]
+    Ok,
+    #[serde(rename = "failed")]
+    Failed,
+    #[serde(rename = "n/a")]
+    NotApplicable,
+}
+
+/// Wall time of a run (s): min and median over its repeats.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Wall {
+    pub min: f64,
+    pub median: f64,
+}
+
+/// One run (or one `n/a` combination).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Record {
+    pub case: String,
+    pub scene: String,
+    pub param: String,
+    pub integrator: String,
+    pub formulation: String,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub dt: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub tol: Option<f64>,
+    pub status: Status,
+    pub failure: Option<Failure>,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub reason: Option<String>,
+    pub metrics: BTreeMap<String, Option<f64>>,
+    /// Why a null metric is null.
+    #[serde(skip_serializing_if = "BTreeMap::is_empty", default)]
+    pub metric_reasons: BTreeMap<String, String>,
+    pub stats: Stats,
+    pub wall_s: Option<Wall>,
+    pub inputs_sha256: String,
+    pub reference_sha256: Option<String>,
+    pub series: Option<String>,
+}
+
+/// An observed order over a ladder.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FitRecord {
+    pub case: String,
+    pub scene: String,
+    pub param: String,
+    pub integrator: String,
+    pub formulation: String,
+    pub metric: String,
+    pub order: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub reason: Option<String>,
+    pub points: Vec<[f64; 2]>,
+}
+
+/// Where and how the numbers were made.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Env {
+    pub rustc: String,
+    pub cpu: String,
+    pub os: String,
+    pub profile: String,
+    pub threads: usize,
+}
+
+/// The whole summary.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Summary {
+    pub schema: u32,
+    pub git_commit: String,
+    pub created_utc: String,
+    pub env: Env,
+    pub records: Vec<Record>,
+    pub fits: Vec<FitRecord>,
+}
+
+/// The commit this binary was built from.
+pub fn git_commit() -> &'static str {
+    env!("MBDBENCH_GIT_COMMIT")
+}
+
+/// The compiler this binary was built with.
+pub fn rustc_version() -> &'static str {
+    env!("MBDBENCH_RUSTC")
+}
+
+impl Env {
+    /// The current machine and build.
+    pub fn current(threads: usize) -> Env {
+        let cpu = std::fs::read_to_string("/proc/cpuinfo")
+            .ok()
+            .and_then(|s| {
+                s.lines()
+                    .find(|l| l.starts_with("model name"))
+                    .and_then(|l| l.split(':').nth(1))
+                    .map(|v| v.trim().to_string())
+            })
+            .unwrap_or_else(|| std::env::consts::ARCH.to_string());
+        let os = std::fs::read_to_string("/etc/os-release")
+            .ok()
+            .and_then(|s| {
+                s.lines()
+                    .find(|l| l.starts_with("PRETTY_NAME="))
+                    .map(|l| l.trim_start_matches("PRETTY_NAME=").trim_matches('"').to_string())
+            })
+            .unwrap_or_else(|| std::env::consts::OS.to_string());
+        Env {
+            rustc: rustc_version().to_string(),
+            cpu,
+            os,
+            profile: if cfg!(debug_assertions) {
+                "debug".into()
+            } else {
+                "release".into()
+            },
+            threads,
+        }
+    }
+}
+
+/// Current UTC time as `YYYY-MM-DDThh:mm:ssZ`.
+pub fn now_utc() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    format_utc(secs)
+}
+
+/// Formats Unix seconds as an ISO-8601 UTC time (proleptic Gregorian calendar).
+pub fn format_utc(secs: u64) -> String {
+    let days = (secs / 86400) as i64;
+    let rem = secs % 86400;
+    // Civil-from-days (Howard Hinnant's algorithm, public domain description).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + if m <= 2 { 1 } else { 0 };
+    format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        (rem % 3600) / 60,
+        rem % 60
+    )
+}
+
+/// A per-run time series at the score times (design.md, "Files").
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Series {
+    pub t: Vec<f64>,
+    pub energy: Vec<f64>,
+    pub constraint: Vec<Option<f64>>,
+    pub conditioning: Vec<f64>,
+    /// The case's primary error metric at each score time (absent without a reference).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub primary_error: Option<Vec<f64>>,
+    pub primary_metric: String,
+}
+
+/// A file-name-safe id for a run.
+pub fn run_id(param: &str, integrator: &str, formulation: &str, dt: Option<f64>, tol: Option<f64>) -> String {
+    let step = match (dt, tol) {
+        (Some(h), _) => format!("dt{h:e}"),
+        (None, Some(t)) => format!("tol{t:e}"),
+        _ => "na".into(),
+    };
+    format!("{param}.{integrator}.{formulation}.{step}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The calendar conversion matches known instants (epoch, a leap day, a recent date).
+    #[test]
+    fn utc_formatting() {
+        assert_eq!(format_utc(0), "1970-01-01T00:00:00Z");
+        assert_eq!(format_utc(951_782_400), "2000-02-29T00:00:00Z");
+        assert_eq!(format_utc(1_795_267_139), "2026-11-21T13:18:59Z");
+    }
+
+    /// Statuses serialize to the contract's strings.
+    #[test]
+    fn status_strings() {
+        assert_eq!(serde_json::to_string(&Status::NotApplicable).unwrap(), "\"n/a\"");
+        assert_eq!(serde_json::to_string(&Status::Ok).unwrap(), "\"ok\"");
+    }
+}
