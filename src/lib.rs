@@ -7,3 +7,4 @@ pub mod run;
 pub mod reference;
 pub mod metrics;
 pub mod summary;
+pub mod registry;
