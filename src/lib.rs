@@ -8,3 +8,7 @@ pub mod reference;
 pub mod metrics;
 pub mod summary;
 pub mod registry;
+pub mod score;
+pub mod baseline;
+pub mod cli;
+pub mod suite;

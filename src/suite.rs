@@ -1,0 +1,509 @@
+//! The catalogue run behind `mbdbench run` and the main job: expand cases x scenes x
+//! registered variants x ladder points into jobs, run them in parallel, score them against the
+//! stored references, fit observed orders, and write `summary.json` with the series files.
+//!
+//! Timing (design.md): a run's wall time is the min and median of 3 repeats when one run takes
+//! under 1 s, else the single run; the repeats re-run the identical deterministic computation.
+//! Records are sorted in a fixed order so that the summary does not depend on `--jobs`.
+use rayon::prelude::*;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use crate::integrate::MethodInfo;
+use crate::metrics::order;
+use crate::reference::{self, Loaded};
+use crate::registry::{self, Setup, Variant};
+use crate::run::RunOutput;
+use crate::score::{self, ScoreContext};
+use crate::summary::{self, Env, FitRecord, Record, Status, Summary, Wall};
+
+/// Step ladders per method order class, and tolerances for adaptive methods.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Ladders {
+    pub order1: Vec<f64>,
+    pub order2_4: Vec<f64>,
+    pub order6: Vec<f64>,
+    pub tol: Vec<f64>,
+}
+
+impl Ladders {
+    /// The ladder a method runs on.
+    pub fn for_method(&self, info: &MethodInfo) -> &[f64] {
+        if info.adaptive {
+            &self.tol
+        } else if info.order <= 1 {
+            &self.order1
+        } else if info.order <= 4 {
+            &self.order2_4
+        } else {
+            &self.order6
+        }
+    }
+}
+
+/// Everything the suite needs of one scene.
+#[derive(Debug, Clone)]
+pub struct ScenePlan {
+    pub case: String,
+    pub scene: String,
+    pub setup: Setup,
+    pub energy_scale: f64,
+    pub primary_metric: String,
+    pub inputs_sha256: String,
+    pub ladders: Ladders,
+    pub quick: Ladders,
+}
+
+/// Variant filters (empty = all).
+#[derive(Debug, Clone, Default)]
+pub struct VariantFilter {
+    pub param: Vec<String>,
+    pub integrator: Vec<String>,
+    pub formulation: Vec<String>,
+}
+
+impl VariantFilter {
+    fn keep(list: &[String], v: &str) -> bool {
+        list.is_empty() || list.iter().any(|x| x == v)
+    }
+    /// Whether a combination passes.
+    pub fn admits(&self, param: &str, integrator: &str, formulation: &str) -> bool {
+        Self::keep(&self.param, param)
+            && Self::keep(&self.integrator, integrator)
+            && Self::keep(&self.formulation, formulation)
+    }
+    /// Names in the filter that are not known variant names (bad input).
+    pub fn unknown_names(&self) -> Vec<String> {
+        let mut bad = vec![];
+        for p in &self.param {
+            if !registry::PARAMS.contains(&p.as_str()) {
+                bad.push(format!("--param {p}"));
+            }
+        }
+        for i in &self.integrator {
+            if !registry::variants().iter().any(|v| v.integrator == i) {
+                bad.push(format!("--integrator {i}"));
+            }
+        }
+        for f in &self.formulation {
+            if !registry::FORMULATIONS.contains(&f.as_str()) {
+                bad.push(format!("--formulation {f}"));
+            }
+        }
+        bad
+    }
+}
+
+/// Options of a catalogue run.
+#[derive(Debug, Clone)]
+pub struct RunOptions {
+    pub quick: bool,
+    pub jobs: usize,
+    pub out: PathBuf,
+    pub t_end: Option<f64>,
+    pub references: PathBuf,
+    /// Print progress lines to stderr.
+    pub progress: bool,
+}
+
+struct Job<'a> {
+    plan: usize,
+    variant: &'a Variant,
+    value: f64,
+}
+
+struct Done {
+    record: Record,
+    series: Option<(String, summary::Series)>,
+}
+
+/// Runs one variant at one ladder value and times it.
+pub fn timed_run(v: &Variant, setup: &Setup, value: f64) -> (Result<RunOutput, String>, Wall) {
+    let t0 = Instant::now();
+    let first = (v.run)(setup, value);
+    let w0 = t0.elapsed().as_secs_f64();
+    let mut times = vec![w0];
+    if w0 < 1.0 && first.is_ok() {
+        for _ in 0..2 {
+            let t = Instant::now();
+            let _ = std::hint::black_box((v.run)(setup, value));
+            times.push(t.elapsed().as_secs_f64());
+        }
+    }
+    times.sort_by(f64::total_cmp);
+    let wall = Wall {
+        min: times[0],
+        median: times[times.len() / 2],
+    };
+    (first, wall)
+}
+
+fn base_record(plan: &ScenePlan, param: &str, integrator: &str, formulation: &str) -> Record {
+    Record {
+        case: plan.case.clone(),
+        scene: plan.scene.clone(),
+        param: param.into(),
+        integrator: integrator.into(),
+        formulation: formulation.into(),
+        dt: None,
+        tol: None,
+        status: Status::NotApplicable,
+        failure: None,
+        reason: None,
+        metrics: BTreeMap::new(),
+        metric_reasons: BTreeMap::new(),
+        stats: Default::default(),
+        wall_s: None,
+        inputs_sha256: plan.inputs_sha256.clone(),
+        reference_sha256: None,
+        series: None,
+    }
+}
+
+/// Accuracy claim of a reference for a metric.
+pub fn claim_for(r: &reference::Reference, metric: &str) -> f64 {
+    let c = &r.accuracy_claim;
+    match metric {
+        "position_error_max" => c.position.unwrap_or(c.rotation),
+        "velocity_error_max" => c.velocity.unwrap_or(c.omega),
+        "omega_error_max" => c.omega,
+        _ => c.rotation,
+    }
+}
+
+/// Loads the references of the plans (none with a `--t-end` override). A missing or stale
+/// reference is bad input.
+pub fn load_references(
+    plans: &[ScenePlan],
+    opts: &RunOptions,
+) -> Result<Vec<Option<Loaded>>, String> {
+    plans
+        .iter()
+        .map(|p| {
+            if opts.t_end.is_some() {
+                return Ok(None);
+            }
+            reference::load(&opts.references, &p.case, &p.scene, &p.inputs_sha256)
+                .map(Some)
+                .map_err(|e| e.to_string())
+        })
+        .collect()
+}
+
+/// Runs the catalogue over `plans` and writes the summary; returns it.
+pub fn run_catalogue(
+    plans: &[ScenePlan],
+    filter: &VariantFilter,
+    opts: &RunOptions,
+) -> Result<Summary, String> {
+    let refs = load_references(plans, opts)?;
+    let mut jobs: Vec<Job> = vec![];
+    let mut records: Vec<Record> = vec![];
+    for (pi, plan) in plans.iter().enumerate() {
+        for param in registry::PARAMS {
+            for integ in registry::INTEGRATORS {
+                for form in registry::FORMULATIONS {
+                    if !filter.admits(param, integ, form) {
+                        continue;
+                    }
+                    match registry::find(param, integ, form) {
+                        None => {
+                            let mut r = base_record(plan, param, integ, form);
+                            r.reason = Some(registry::static_na_reason(param, integ, form));
+                            records.push(r);
+                        }
+                        Some(v) => {
+                            if let Some(why) = registry::scene_na_reason(v, &plan.setup.body) {
+                                let mut r = base_record(plan, param, integ, form);
+                                r.reason = Some(why);
+                                records.push(r);
+                                continue;
+                            }
+                            let ladders = if opts.quick { &plan.quick } else { &plan.ladders };
+                            for &value in ladders.for_method(&v.info) {
+                                jobs.push(Job {
+                                    plan: pi,
+                                    variant: v,
+                                    value,
+                                });
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let total = jobs.len();
+    let counter = std::sync::atomic::AtomicUsize::new(0);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.jobs.max(1))
+        .build()
+        .map_err(|e| e.to_string())?;
+    let plans_t: Vec<ScenePlan> = plans
+        .iter()
+        .map(|p| {
+            let mut p = p.clone();
+            if let Some(t) = opts.t_end {
+                p.setup.grid.t_end = t;
+            }
+            p
+        })
+        .collect();
+    let done: Vec<Done> = pool.install(|| {
+        jobs.par_iter()
+            .map(|job| {
+                let plan = &plans_t[job.plan];
+                let d = run_job(plan, job, refs[job.plan].as_ref());
+                let n = counter.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                if opts.progress && (n % 50 == 0 || n == total) {
+                    eprintln!("  {n}/{total} runs");
+                }
+                d
+            })
+            .collect()
+    });
+    let series_root = opts.out.join("series");
+    for d in done {
+        if let Some((rel, series)) = &d.series {
+            let text = serde_json::to_string(series).map_err(|e| e.to_string())?;
+            reference::write_atomic(&opts.out.join(rel), text.as_bytes())
+                .map_err(|e| format!("{}: {e}", series_root.display()))?;
+        }
+        records.push(d.record);
+    }
+    records.sort_by(|a, b| record_key(a).cmp(&record_key(b)));
+    let fits = fit_orders(plans, &refs, &records);
+    let summary = Summary {
+        schema: 1,
+        git_commit: summary::git_commit().into(),
+        created_utc: summary::now_utc(),
+        env: Env::current(opts.jobs),
+        records,
+        fits,
+    };
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    let path = opts.out.join("summary.json");
+    reference::write_atomic(&path, text.as_bytes())
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(summary)
+}
+
+fn order_key(name: &str, list: &[&str]) -> usize {
+    list.iter().position(|x| *x == name).unwrap_or(usize::MAX)
+}
+
+fn record_key(r: &Record) -> (String, String, usize, usize, usize, u64, u64) {
+    (
+        r.case.clone(),
+        r.scene.clone(),
+        order_key(&r.param, registry::PARAMS),
+        order_key(&r.integrator, registry::INTEGRATORS),
+        order_key(&r.formulation, registry::FORMULATIONS),
+        r.dt.map(|x| (-x).to_bits() ^ (1 << 63)).unwrap_or(0),
+        r.tol.map(|x| (-x).to_bits() ^ (1 << 63)).unwrap_or(0),
+    )
+}
+
+fn run_job(plan: &ScenePlan, job: &Job, reference: Option<&Loaded>) -> Done {
+    let v = job.variant;
+    let mut rec = base_record(plan, v.param, v.integrator, v.formulation);
+    if v.info.adaptive {
+        rec.tol = Some(job.value);
+    } else {
+        rec.dt = Some(job.value);
+    }
+    rec.reference_sha256 = reference.map(|l| l.file_sha256.clone());
+    let (res, wall) = timed_run(v, &plan.setup, job.value);
+    let out = match res {
+        Ok(o) => o,
+        Err(msg) => {
+            rec.status = Status::Failed;
+            rec.failure = Some(crate::integrate::Failure::new(
+                crate::integrate::FailureKind::WorkLimit,
+                0.0,
+                msg,
+            ));
+            return Done {
+                record: rec,
+                series: None,
+            };
+        }
+    };
+    rec.wall_s = Some(wall);
+    rec.stats = out.stats;
+    rec.status = if out.failure.is_some() {
+        Status::Failed
+    } else {
+        Status::Ok
+    };
+    rec.failure = out.failure.clone();
+    let cx = ScoreContext {
+        body: &plan.setup.body,
+        energy_scale: plan.energy_scale,
+        primary_metric: &plan.primary_metric,
+        reference: reference.map(|l| &l.reference),
+    };
+    let (scores, series) = score::score(&out, &cx);
+    rec.metrics = scores.values;
+    rec.metric_reasons = scores.reasons;
+    let id = summary::run_id(v.param, v.integrator, v.formulation, rec.dt, rec.tol);
+    let rel = format!("series/{}/{}/{id}.json", plan.case, plan.scene);
+    rec.series = Some(rel.clone());
+    Done {
+        record: rec,
+        series: Some((rel, series)),
+    }
+}
+
+/// Observed orders of the fixed-step variants over their ladders, on the primary metric.
+fn fit_orders(plans: &[ScenePlan], refs: &[Option<Loaded>], records: &[Record]) -> Vec<FitRecord> {
+    let mut fits = vec![];
+    for (pi, plan) in plans.iter().enumerate() {
+        let Some(loaded) = &refs[pi] else { continue };
+        let claim = claim_for(&loaded.reference, &plan.primary_metric);
+        let mut groups: BTreeMap<(usize, usize, usize), Vec<&Record>> = BTreeMap::new();
+        for r in records
+            .iter()
+            .filter(|r| r.case == plan.case && r.scene == plan.scene && r.dt.is_some())
+        {
+            groups
+                .entry((
+                    order_key(&r.param, registry::PARAMS),
+                    order_key(&r.integrator, registry::INTEGRATORS),
+                    order_key(&r.formulation, registry::FORMULATIONS),
+                ))
+                .or_default()
+                .push(r);
+        }
+        for rs in groups.values() {
+            let pts: Vec<(f64, Option<f64>)> = rs
+                .iter()
+                .map(|r| {
+                    (
+                        r.dt.unwrap_or(0.0),
+                        r.metrics.get(&plan.primary_metric).copied().flatten(),
+                    )
+                })
+                .collect();
+            let f = order::fit(&pts, claim);
+            fits.push(FitRecord {
+                case: plan.case.clone(),
+                scene: plan.scene.clone(),
+                param: rs[0].param.clone(),
+                integrator: rs[0].integrator.clone(),
+                formulation: rs[0].formulation.clone(),
+                metric: plan.primary_metric.clone(),
+                order: f.order,
+                reason: f.reason,
+                points: f.points,
+            });
+        }
+    }
+    fits
+}
+
+/// Formats a number for the terminal table.
+fn num(v: Option<f64>) -> String {
+    match v {
+        Some(x) => format!("{x:9.2e}"),
+        None => format!("{:>9}", "-"),
+    }
+}
+
+/// A readable table: per scene, one row per variant (finest ladder point).
+pub fn print_table(
+    s: &Summary,
+    primary: &BTreeMap<String, String>,
+    out: &mut impl std::io::Write,
+) -> std::io::Result<()> {
+    let mut by_scene: BTreeMap<(String, String), Vec<&Record>> = BTreeMap::new();
+    for r in &s.records {
+        by_scene
+            .entry((r.case.clone(), r.scene.clone()))
+            .or_default()
+            .push(r);
+    }
+    let fits: BTreeMap<(&str, &str, &str, &str, &str), Option<f64>> = s
+        .fits
+        .iter()
+        .map(|f| {
+            (
+                (
+                    f.case.as_str(),
+                    f.scene.as_str(),
+                    f.param.as_str(),
+                    f.integrator.as_str(),
+                    f.formulation.as_str(),
+                ),
+                f.order,
+            )
+        })
+        .collect();
+    for ((case, scene), rs) in by_scene {
+        writeln!(out, "\n{case}/{scene}")?;
+        writeln!(
+            out,
+            "  {:<12} {:<18} {:<8} {:>9} {:>9} {:>9} {:>9} {:>6} {:>10}  status",
+            "param", "integrator", "form", "dt|tol", "primary", "E drift", "cond min", "order", "rhs evals"
+        )?;
+        let mut last: BTreeMap<(&str, &str, &str), &Record> = BTreeMap::new();
+        let mut failures: BTreeMap<(&str, &str, &str), usize> = BTreeMap::new();
+        for r in &rs {
+            if r.status == Status::NotApplicable {
+                continue;
+            }
+            let k = (r.param.as_str(), r.integrator.as_str(), r.formulation.as_str());
+            last.insert(k, r);
+            if r.status == Status::Failed {
+                *failures.entry(k).or_default() += 1;
+            }
+        }
+        let primary = primary
+            .get(&case)
+            .cloned()
+            .unwrap_or_else(|| "rotation_error_max".into());
+        let mut keys: Vec<_> = last.keys().copied().collect();
+        keys.sort_by_key(|(p, i, f)| {
+            (
+                order_key(p, registry::PARAMS),
+                order_key(i, registry::INTEGRATORS),
+                order_key(f, registry::FORMULATIONS),
+            )
+        });
+        for k in keys {
+            let r = last[&k];
+            let order = fits
+                .get(&(case.as_str(), scene.as_str(), k.0, k.1, k.2))
+                .copied()
+                .flatten()
+                .map(|o| format!("{o:6.2}"))
+                .unwrap_or_else(|| format!("{:>6}", "-"));
+            let status = match (&r.failure, failures.get(&k)) {
+                (Some(f), _) => format!("failed {:?} t={:.3}", f.kind, f.t),
+                (None, Some(n)) => format!("ok ({n} coarser failed)"),
+                (None, None) => "ok".into(),
+            };
+            writeln!(
+                out,
+                "  {:<12} {:<18} {:<8} {} {} {} {} {} {:>10}  {}",
+                k.0,
+                k.1,
+                k.2,
+                num(r.dt.or(r.tol)),
+                num(r.metrics.get(&primary).copied().flatten()),
+                num(r.metrics.get("energy_drift_max").copied().flatten()),
+                num(r.metrics.get("conditioning_min").copied().flatten()),
+                order,
+                r.stats.rhs_evals,
+                status
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// Where the series files of a summary live.
+pub fn series_dir(out: &Path) -> PathBuf {
+    out.join("series")
+}
