@@ -102,3 +102,295 @@ pub struct TrajectoryArgs {
     #[arg(long)]
     pub out: PathBuf,
 }
+
+use std::collections::BTreeMap;
+
+use crate::case::{self, Case};
+use crate::plan;
+use crate::reference;
+use crate::refgen;
+use crate::registry;
+use crate::suite::{self, RunOptions, VariantFilter};
+
+/// Exit codes (design.md): success, a run or check failed, bad input or usage.
+pub const EXIT_OK: i32 = 0;
+pub const EXIT_FAILED: i32 = 1;
+pub const EXIT_BAD_INPUT: i32 = 2;
+
+/// The default references folder: `references/` of the source tree.
+pub fn default_references() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("references")
+}
+
+fn load_cases(common: &Common) -> Result<Vec<Case>, String> {
+    match &common.cases {
+        Some(dir) => case::load_dir(dir),
+        None => case::embedded(),
+    }
+    .map_err(|e| e.to_string())
+}
+
+fn jobs_or_default(j: Option<usize>) -> usize {
+    j.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1))
+}
+
+/// Runs the parsed command line; returns the exit code. Errors are printed to stderr.
+pub fn execute(cli: Cli) -> i32 {
+    let common = cli.common.clone();
+    let result = match cli.command {
+        None => cmd_run(&common, &RunArgs::default()),
+        Some(Command::List { json }) => cmd_list(&common, json),
+        Some(Command::Run(a)) => cmd_run(&common, &a),
+        Some(Command::Trajectory(a)) => cmd_trajectory(&common, &a),
+        Some(Command::Reference { case, scene, check }) => {
+            cmd_reference(&common, &case, scene.as_deref(), check)
+        }
+    };
+    match result {
+        Ok(code) => code,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            EXIT_BAD_INPUT
+        }
+    }
+}
+
+fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
+    let cases = load_cases(common)?;
+    let plans = plan::plans(&cases, &[], &[])?;
+    let mut scenes = vec![];
+    for p in &plans {
+        let mut variants = vec![];
+        for param in registry::PARAMS {
+            for integ in registry::INTEGRATORS {
+                for form in registry::FORMULATIONS {
+                    let (status, reason) = match registry::find(param, integ, form) {
+                        None => ("n/a", Some(registry::static_na_reason(param, integ, form))),
+                        Some(v) => match registry::scene_na_reason(v, &p.setup.body) {
+                            Some(r) => ("n/a", Some(r)),
+                            None => ("run", None),
+                        },
+                    };
+                    variants.push(serde_json::json!({
+                        "param": param, "integrator": integ, "formulation": form,
+                        "status": status, "reason": reason,
+                    }));
+                }
+            }
+        }
+        scenes.push(serde_json::json!({
+            "case": p.case, "scene": p.scene, "t_end": p.setup.grid.t_end,
+            "variants": variants,
+        }));
+    }
+    if json {
+        let v = serde_json::json!({ "scenes": scenes, "registered": registry::variants().len() });
+        println!("{}", serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?);
+        return Ok(EXIT_OK);
+    }
+    for c in &cases {
+        println!("{} — {}", c.name, c.title);
+        for s in &c.scenes {
+            println!("  scene {} (t_end {} s)", s.name, s.t_end);
+        }
+    }
+    println!("\nregistered variants: {}", registry::variants().len());
+    for v in registry::variants() {
+        println!(
+            "  {:<12} {:<18} {:<8} order {} {}{}{}",
+            v.param,
+            v.integrator,
+            v.formulation,
+            v.info.order,
+            if v.info.adaptive { "adaptive " } else { "" },
+            if v.info.implicit { "implicit " } else { "explicit " },
+            if v.info.lie_group { "lie-group" } else { "" }
+        );
+    }
+    println!("\nnot applicable:");
+    let mut seen = BTreeMap::new();
+    for param in registry::PARAMS {
+        for integ in registry::INTEGRATORS {
+            for form in registry::FORMULATIONS {
+                if registry::find(param, integ, form).is_none() {
+                    seen.entry(registry::static_na_reason(param, integ, form))
+                        .or_insert_with(Vec::new)
+                        .push(format!("{param}/{integ}/{form}"));
+                }
+            }
+        }
+    }
+    for (reason, list) in seen {
+        println!("  {} combinations: {reason}", list.len());
+    }
+    for p in &plans {
+        for v in registry::variants() {
+            if let Some(r) = registry::scene_na_reason(v, &p.setup.body) {
+                println!("  {}/{}: {}/{}/{}: {r}", p.case, p.scene, v.param, v.integrator, v.formulation);
+            }
+        }
+    }
+    Ok(EXIT_OK)
+}
+
+fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
+    let cases = load_cases(common)?;
+    if let Some(t) = a.t_end
+        && !(t.is_finite() && t > 0.0)
+    {
+        return Err(format!("--t-end {t}: must be a positive number"));
+    }
+    let plans = plan::plans(&cases, &a.filters.case, &a.filters.scene)?;
+    let filter = VariantFilter {
+        param: a.filters.param.clone(),
+        integrator: a.filters.integrator.clone(),
+        formulation: a.filters.formulation.clone(),
+    };
+    let bad = filter.unknown_names();
+    if !bad.is_empty() {
+        return Err(format!("unknown variant name(s): {}", bad.join(", ")));
+    }
+    if let Some(t) = a.t_end {
+        for p in &plans {
+            if crate::run::divides(t, p.setup.grid.score_every).is_none() {
+                return Err(format!(
+                    "--t-end {t}: score_every = {} of {}/{} does not divide it",
+                    p.setup.grid.score_every, p.case, p.scene
+                ));
+            }
+        }
+    }
+    let opts = RunOptions {
+        quick: a.quick,
+        jobs: jobs_or_default(a.jobs),
+        out: a.out.clone(),
+        t_end: a.t_end,
+        references: common.references.clone().unwrap_or_else(default_references),
+        progress: true,
+    };
+    let t0 = std::time::Instant::now();
+    eprintln!(
+        "mbdbench run: {} scenes, {} jobs{}",
+        plans.len(),
+        opts.jobs,
+        if a.quick { ", quick tier" } else { "" }
+    );
+    let summary = suite::run_catalogue(&plans, &filter, &opts)?;
+    let primary: BTreeMap<String, String> = cases
+        .iter()
+        .map(|c| (c.name.clone(), c.primary_metric.clone()))
+        .collect();
+    let mut stdout = std::io::stdout().lock();
+    suite::print_table(&summary, &primary, &mut stdout).map_err(|e| e.to_string())?;
+    let runs = summary.records.iter().filter(|r| r.status != crate::summary::Status::NotApplicable).count();
+    let failed = summary.records.iter().filter(|r| r.status == crate::summary::Status::Failed).count();
+    println!(
+        "\n{runs} runs ({failed} ended with a typed failure), {} n/a; {:.1} s; summary: {}",
+        summary.records.len() - runs,
+        t0.elapsed().as_secs_f64(),
+        opts.out.join("summary.json").display()
+    );
+    Ok(EXIT_OK)
+}
+
+fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
+    let cases = load_cases(common)?;
+    let plans = plan::plans(&cases, std::slice::from_ref(&a.case), std::slice::from_ref(&a.scene))?;
+    let mut plan = plans
+        .into_iter()
+        .find(|p| p.case == a.case && p.scene == a.scene)
+        .ok_or_else(|| format!("--scene {}: not in case {}", a.scene, a.case))?;
+    let v = registry::find(&a.param, &a.integrator, &a.formulation).ok_or_else(|| {
+        format!(
+            "{}/{}/{}: not a registered variant ({})",
+            a.param,
+            a.integrator,
+            a.formulation,
+            registry::static_na_reason(&a.param, &a.integrator, &a.formulation)
+        )
+    })?;
+    if let Some(r) = registry::scene_na_reason(v, &plan.setup.body) {
+        return Err(format!("{}/{}/{} is n/a here: {r}", a.param, a.integrator, a.formulation));
+    }
+    let value = match (a.dt, a.tol, v.info.adaptive) {
+        (Some(h), None, false) => h,
+        (None, Some(t), true) => t,
+        (Some(_), _, true) => return Err(format!("{} is adaptive: give --tol, not --dt", a.integrator)),
+        (_, Some(_), false) => return Err(format!("{} is a fixed-step method: give --dt, not --tol", a.integrator)),
+        _ => return Err("give --dt or --tol".into()),
+    };
+    if !(value.is_finite() && value > 0.0) {
+        return Err(format!("--dt/--tol {value}: must be a positive number"));
+    }
+    if let Some(t) = a.t_end {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(format!("--t-end {t}: must be a positive number"));
+        }
+        plan.setup.grid.t_end = t;
+    }
+    if !v.info.adaptive && crate::run::divides(plan.setup.grid.score_every, value).is_none() {
+        return Err(format!(
+            "--dt {value}: does not divide score_every = {} (spec/cases.md rule)",
+            plan.setup.grid.score_every
+        ));
+    }
+    let out = (v.run)(&plan.setup, value)?;
+    let body = &plan.setup.body;
+    let t: Vec<f64> = out.samples.iter().map(|s| s.t).collect();
+    let doc = serde_json::json!({
+        "case": a.case, "scene": a.scene, "param": a.param, "integrator": a.integrator,
+        "formulation": a.formulation,
+        "status": if out.failure.is_some() { "failed" } else { "ok" },
+        "failure": out.failure,
+        "t": t,
+        "position": out.samples.iter().map(|s| [s.obs.x.x, s.obs.x.y, s.obs.x.z]).collect::<Vec<_>>(),
+        "quaternion": out.samples.iter().map(|s| { let q = crate::math::so3::canonical(&s.obs.q); [q.w, q.i, q.j, q.k] }).collect::<Vec<_>>(),
+        "velocity": out.samples.iter().map(|s| [s.obs.v.x, s.obs.v.y, s.obs.v.z]).collect::<Vec<_>>(),
+        "omega_body": out.samples.iter().map(|s| [s.obs.omega.x, s.obs.omega.y, s.obs.omega.z]).collect::<Vec<_>>(),
+        "energy": out.samples.iter().map(|s| body.energy(&s.obs)).collect::<Vec<_>>(),
+    });
+    let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
+    reference::write_atomic(&a.out, text.as_bytes()).map_err(|e| format!("{}: {e}", a.out.display()))?;
+    if let Some(f) = out.failure {
+        eprintln!("run failed: {:?} at t = {}: {}", f.kind, f.t, f.message);
+        return Ok(EXIT_FAILED);
+    }
+    Ok(EXIT_OK)
+}
+
+fn cmd_reference(common: &Common, case_name: &str, scene: Option<&str>, check: bool) -> Result<i32, String> {
+    let cases = load_cases(common)?;
+    let c = cases
+        .iter()
+        .find(|c| c.name == case_name)
+        .ok_or_else(|| format!("--case {case_name}: no such case"))?;
+    let scene_filter: Vec<String> = scene.map(|s| vec![s.to_string()]).unwrap_or_default();
+    let plans = plan::plans(&cases, &[case_name.to_string()], &scene_filter)?;
+    let root = common.references.clone().unwrap_or_else(default_references);
+    let mut all_ok = true;
+    for p in &plans {
+        if check {
+            let stored = reference::load(&root, &p.case, &p.scene, &p.inputs_sha256).map_err(|e| e.to_string())?;
+            let (ok, msg) = refgen::check(c.reference, p, &stored.reference)?;
+            println!("{} {msg}", if ok { "pass" } else { "FAIL" });
+            all_ok &= ok;
+        } else {
+            let t0 = std::time::Instant::now();
+            let r = refgen::build(c.reference, p)?;
+            let path = reference::save(&root, &r).map_err(|e| e.to_string())?;
+            println!(
+                "{}: {} ({:.1} s); cross-check {}: rotation {:.2e}, omega {:.2e}, position {:?}; energy drift {:.2e}; claim rotation {:.2e}",
+                path.display(),
+                r.provenance.method,
+                t0.elapsed().as_secs_f64(),
+                r.provenance.cross_check.method,
+                r.provenance.cross_check.max_rotation_diff,
+                r.provenance.cross_check.max_omega_diff,
+                r.provenance.cross_check.max_position_diff,
+                r.provenance.energy_drift,
+                r.accuracy_claim.rotation
+            );
+        }
+    }
+    Ok(if all_ok { EXIT_OK } else { EXIT_FAILED })
+}

@@ -1,0 +1,80 @@
+//! From validated case files to the suite's scene plans: the compiled model, the initial
+//! state, the grid, the work limits, the ladders and the physics hash of each scene.
+use crate::case::{self, Case, Ladder, OrderClass, Scene};
+use crate::integrate::Limits;
+use crate::registry::Setup;
+use crate::run::Grid;
+use crate::suite::{Ladders, ScenePlan};
+
+fn ladders(l: &Ladder) -> Ladders {
+    let dts = |c: OrderClass| l.fixed(c).iter().map(|s| s.dt).collect::<Vec<_>>();
+    Ladders {
+        order1: dts(OrderClass::Order1),
+        order2_4: dts(OrderClass::Order2To4),
+        order6: dts(OrderClass::Order6),
+        tol: l.tol.clone(),
+    }
+}
+
+/// The plan of one scene.
+pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
+    let body = c.rigid_body(s)?;
+    let limits = Limits {
+        max_steps: c.max_steps,
+        max_rhs_evals: c.max_rhs_evals.unwrap_or(Limits::default().max_rhs_evals),
+    };
+    Ok(ScenePlan {
+        case: c.name.clone(),
+        scene: s.name.clone(),
+        setup: Setup {
+            body,
+            initial: c.initial(s),
+            grid: Grid {
+                t_end: s.t_end,
+                sample_every: s.sample_every,
+                score_every: s.score_every,
+            },
+            limits,
+        },
+        energy_scale: c.energy_scale,
+        primary_metric: c.primary_metric.clone(),
+        inputs_sha256: case::inputs_sha256(c, s),
+        ladders: ladders(s.ladder(false)),
+        quick: ladders(s.ladder(true)),
+    })
+}
+
+/// The plans of the selected cases and scenes (empty filter lists select all). A name in a
+/// filter that matches nothing is an error.
+pub fn plans(
+    cases: &[Case],
+    case_filter: &[String],
+    scene_filter: &[String],
+) -> Result<Vec<ScenePlan>, String> {
+    for c in case_filter {
+        if !cases.iter().any(|k| &k.name == c) {
+            return Err(format!(
+                "--case {c}: no such case (known: {})",
+                cases.iter().map(|k| k.name.as_str()).collect::<Vec<_>>().join(", ")
+            ));
+        }
+    }
+    let mut out = vec![];
+    for c in cases {
+        if !case_filter.is_empty() && !case_filter.contains(&c.name) {
+            continue;
+        }
+        for s in &c.scenes {
+            if !scene_filter.is_empty() && !scene_filter.contains(&s.name) {
+                continue;
+            }
+            out.push(scene_plan(c, s).map_err(|e| e.to_string())?);
+        }
+    }
+    for s in scene_filter {
+        if !out.iter().any(|p| &p.scene == s) {
+            return Err(format!("--scene {s}: no such scene in the selected cases"));
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,309 @@
+//! Making and checking references (`mbdbench reference`; design.md, "References").
+//!
+//! - Numerical references (`reference = "numerical"`: nine_spring, heavy_top): `gauss6` on
+//!   `so3` in the body formulation at a small step, cross-checked by `dop853` at a tight
+//!   tolerance on `quat_proj` in the spatial formulation, a run that differs in integrator,
+//!   parameterization *and* formulation.
+//! - Exact references (`reference = "exact"`: gimbal_lock, free_body): the matrix exponential
+//!   for a spherical body's constant spin, the Jacobi-elliptic Euler-Poinsot solution
+//!   otherwise (`model::torque_free`), cross-checked by the same numerical run as above.
+//!
+//! The accuracy claim is, per quantity, the larger of the cross-check difference and the
+//! reference's own energy error. `--check` recomputes the primary trajectory and passes when it
+//! differs from the stored one by at most the claim.
+use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+
+use crate::case::ReferenceKind;
+use crate::math::so3;
+use crate::model::rigid_body::{Observation, RigidBody};
+use crate::model::torque_free::{TorqueFreeExact, spin_exact};
+use crate::reference::{AccuracyClaim, CrossCheck, Provenance, Reference};
+use crate::registry::{self, Setup};
+use crate::run::Grid;
+use crate::suite::ScenePlan;
+use crate::summary;
+
+/// A trajectory at the score times.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Track {
+    pub t: Vec<f64>,
+    pub obs: Vec<Observation>,
+}
+
+/// How a primary reference trajectory is computed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Primary {
+    /// `gauss6`/`so3`/`body` at step `dt`.
+    Gauss6 { dt: f64 },
+    /// Constant spin of a spherical body.
+    Spin,
+    /// Euler-Poinsot via Jacobi elliptic functions.
+    EllipticTorqueFree,
+}
+
+/// The step of a numerical reference or cross-check run: the largest step at most `target`
+/// that divides `score_every` (halving from `score_every`).
+fn fine_step(grid: &Grid, target: f64) -> f64 {
+    let mut h = grid.score_every;
+    while h > target {
+        h *= 0.5;
+    }
+    h
+}
+
+fn numerical_step(body: &RigidBody) -> f64 {
+    // Fast spin (heavy top: 150 rad/s) needs a finer step than the slow cases.
+    if body.pivot_com.is_some() { 1e-4 } else { 2e-3 }
+}
+
+/// Chooses how the primary reference of a scene is computed.
+pub fn primary_for(kind: ReferenceKind, plan: &ScenePlan) -> Result<Primary, String> {
+    match kind {
+        ReferenceKind::Numerical => Ok(Primary::Gauss6 {
+            dt: fine_step(&plan.setup.grid, numerical_step(&plan.setup.body)),
+        }),
+        ReferenceKind::Exact => {
+            let b = &plan.setup.body;
+            if !b.springs.is_empty() || b.gravity.is_some() || b.pivot_com.is_some() {
+                return Err(format!(
+                    "{}/{}: an exact reference needs a torque-free body",
+                    plan.case, plan.scene
+                ));
+            }
+            let j = b.inertia;
+            let off = j[(0, 1)].abs() + j[(0, 2)].abs() + j[(1, 2)].abs();
+            if off != 0.0 {
+                return Err(format!(
+                    "{}/{}: an exact reference needs a diagonal inertia",
+                    plan.case, plan.scene
+                ));
+            }
+            if j[(0, 0)] == j[(1, 1)] && j[(1, 1)] == j[(2, 2)] {
+                Ok(Primary::Spin)
+            } else {
+                Ok(Primary::EllipticTorqueFree)
+            }
+        }
+    }
+}
+
+fn score_times(grid: &Grid) -> Result<Vec<f64>, String> {
+    let n = crate::run::divides(grid.t_end, grid.score_every)
+        .ok_or("score_every does not divide t_end")?;
+    Ok((0..=n).map(|k| k as f64 * grid.score_every).collect())
+}
+
+/// Runs a registered variant and returns its score-grid trajectory.
+fn run_track(setup: &Setup, param: &str, integ: &str, form: &str, value: f64) -> Result<Track, String> {
+    let v = registry::find(param, integ, form)
+        .ok_or_else(|| format!("{param}/{integ}/{form} is not registered"))?;
+    let out = (v.run)(setup, value)?;
+    if let Some(f) = out.failure {
+        return Err(format!(
+            "reference run {param}/{integ}/{form} failed: {:?} at t = {}: {}",
+            f.kind, f.t, f.message
+        ));
+    }
+    let scored: Vec<_> = out.scored().collect();
+    Ok(Track {
+        t: scored.iter().map(|s| s.t).collect(),
+        obs: scored.iter().map(|s| s.obs).collect(),
+    })
+}
+
+/// Computes the primary trajectory.
+pub fn primary_track(p: &Primary, plan: &ScenePlan) -> Result<Track, String> {
+    let setup = &plan.setup;
+    match p {
+        Primary::Gauss6 { dt } => run_track(setup, "so3", "gauss6", "body", *dt),
+        Primary::Spin => {
+            let o = setup.initial;
+            let r0 = o.q.to_rotation_matrix().into_inner();
+            let w = r0 * o.omega;
+            let t = score_times(&setup.grid)?;
+            let obs = t
+                .iter()
+                .map(|&t| {
+                    let (q, omega) = spin_exact(w, r0, t);
+                    Observation {
+                        q,
+                        x: o.x + o.v * t,
+                        v: o.v,
+                        omega,
+                    }
+                })
+                .collect();
+            Ok(Track { t, obs })
+        }
+        Primary::EllipticTorqueFree => {
+            let o = setup.initial;
+            let j = setup.body.inertia;
+            let r0 = o.q.to_rotation_matrix().into_inner();
+            let exact = TorqueFreeExact::new(
+                Vector3::new(j[(0, 0)], j[(1, 1)], j[(2, 2)]),
+                o.omega,
+                r0,
+            )?;
+            let t = score_times(&setup.grid)?;
+            let obs = t
+                .iter()
+                .map(|&t| {
+                    let (q, omega) = exact.at(t);
+                    Observation {
+                        q,
+                        x: o.x + o.v * t,
+                        v: o.v,
+                        omega,
+                    }
+                })
+                .collect();
+            Ok(Track { t, obs })
+        }
+    }
+}
+
+/// The independent cross-check run: `dop853` on `quat_proj`, spatial formulation.
+pub const CROSS_TOL: f64 = 1e-13;
+
+/// Max differences between two tracks: (position, rotation, velocity, omega).
+pub fn max_diffs(a: &Track, b: &Track) -> Result<[f64; 4], String> {
+    if a.t.len() != b.t.len() {
+        return Err(format!("tracks differ in length: {} vs {}", a.t.len(), b.t.len()));
+    }
+    let mut m = [0.0_f64; 4];
+    for (x, y) in a.obs.iter().zip(&b.obs) {
+        let d = [
+            (x.x - y.x).norm(),
+            so3::geodesic_quat(&x.q, &y.q),
+            (x.v - y.v).norm(),
+            (x.omega - y.omega).norm(),
+        ];
+        for i in 0..4 {
+            if !d[i].is_finite() {
+                return Err("non-finite difference".into());
+            }
+            m[i] = m[i].max(d[i]);
+        }
+    }
+    Ok(m)
+}
+
+fn energy_drift(body: &RigidBody, tr: &Track, scale: f64) -> f64 {
+    let e0 = body.energy(&tr.obs[0]);
+    let s = e0.abs().max(scale);
+    tr.obs
+        .iter()
+        .map(|o| (body.energy(o) - e0).abs() / s)
+        .fold(0.0, f64::max)
+}
+
+fn method_name(p: &Primary) -> (String, Option<f64>) {
+    match p {
+        Primary::Gauss6 { dt } => ("gauss6/so3/body".into(), Some(*dt)),
+        Primary::Spin => ("exact: R(t) = exp(t [w]x) R0 (constant spin)".into(), None),
+        Primary::EllipticTorqueFree => (
+            "exact: Euler-Poinsot, Jacobi sn/cn/dn by AGM, attitude via Carlson R_F/R_J".into(),
+            None,
+        ),
+    }
+}
+
+/// Builds the reference of a scene (primary + cross-check + claim).
+pub fn build(kind: ReferenceKind, plan: &ScenePlan) -> Result<Reference, String> {
+    let p = primary_for(kind, plan)?;
+    let primary = primary_track(&p, plan)?;
+    let cross = run_track(&plan.setup, "quat_proj", "dop853", "spatial", CROSS_TOL)?;
+    let d = max_diffs(&primary, &cross)?;
+    let translates = plan.setup.body.translates();
+    let drift = energy_drift(&plan.setup.body, &primary, plan.energy_scale);
+    // The energy error, as a relative number, bounds the reference's own error only in
+    // order of magnitude; the claim takes the larger of it and the cross-check difference.
+    let claim = |x: f64| x.max(drift);
+    let (method, step) = method_name(&p);
+    let body = &plan.setup.body;
+    let to_arr3 = |v: &Vector3<f64>| [v.x, v.y, v.z];
+    Ok(Reference {
+        case: plan.case.clone(),
+        scene: plan.scene.clone(),
+        t: primary.t.clone(),
+        position: primary.obs.iter().map(|o| to_arr3(&o.x)).collect(),
+        quaternion: primary
+            .obs
+            .iter()
+            .map(|o| {
+                let q = so3::canonical(&o.q);
+                [q.w, q.i, q.j, q.k]
+            })
+            .collect(),
+        velocity: primary.obs.iter().map(|o| to_arr3(&o.v)).collect(),
+        omega_body: primary.obs.iter().map(|o| to_arr3(&o.omega)).collect(),
+        energy: primary.obs.iter().map(|o| body.energy(o)).collect(),
+        provenance: Provenance {
+            command: format!(
+                "mbdbench reference --case {} --scene {}",
+                plan.case, plan.scene
+            ),
+            method,
+            tolerance: None,
+            step,
+            git_commit: summary::git_commit().into(),
+            created_utc: summary::now_utc(),
+            rustc: summary::rustc_version().into(),
+            cross_check: CrossCheck {
+                method: format!("dop853/quat_proj/spatial, tol {CROSS_TOL:e}"),
+                max_position_diff: translates.then_some(d[0]),
+                max_rotation_diff: d[1],
+                max_velocity_diff: translates.then_some(d[2]),
+                max_omega_diff: d[3],
+            },
+            energy_drift: drift,
+        },
+        accuracy_claim: AccuracyClaim {
+            position: translates.then_some(claim(d[0])),
+            rotation: claim(d[1]),
+            velocity: translates.then_some(claim(d[2])),
+            omega: claim(d[3]),
+        },
+        inputs_sha256: plan.inputs_sha256.clone(),
+    })
+}
+
+/// Track of a stored reference.
+pub fn stored_track(r: &Reference) -> Track {
+    Track {
+        t: r.t.clone(),
+        obs: (0..r.t.len())
+            .map(|k| {
+                let q = r.quaternion[k];
+                Observation {
+                    q: UnitQuaternion::new_unchecked(Quaternion::new(q[0], q[1], q[2], q[3])),
+                    x: Vector3::from(r.position[k]),
+                    v: Vector3::from(r.velocity[k]),
+                    omega: Vector3::from(r.omega_body[k]),
+                }
+            })
+            .collect(),
+    }
+}
+
+/// `reference --check`: recomputes the primary and compares with the stored reference.
+/// Returns the differences and whether each is within the claim.
+pub fn check(kind: ReferenceKind, plan: &ScenePlan, stored: &Reference) -> Result<(bool, String), String> {
+    let p = primary_for(kind, plan)?;
+    let now = primary_track(&p, plan)?;
+    let d = max_diffs(&now, &stored_track(stored))?;
+    let c = &stored.accuracy_claim;
+    let claims = [
+        c.position.unwrap_or(f64::INFINITY),
+        c.rotation,
+        c.velocity.unwrap_or(f64::INFINITY),
+        c.omega,
+    ];
+    let ok = (0..4).all(|i| d[i] <= claims[i]);
+    let msg = format!(
+        "{}/{}: recomputed vs stored: position {:.2e}, rotation {:.2e}, velocity {:.2e}, omega {:.2e} (claims {:.2e}, {:.2e}, {:.2e}, {:.2e})",
+        plan.case, plan.scene, d[0], d[1], d[2], d[3], claims[0], claims[1], claims[2], claims[3]
+    );
+    Ok((ok, msg))
+}
+
