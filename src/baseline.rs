@@ -20,7 +20,9 @@ pub fn rhs(b: &RigidBody, y: &Y) -> Y {
     let v = Vector3::new(y[7], y[8], y[9]);
     let w = Vector3::new(y[10], y[11], y[12]);
     // Rotation matrix of the (not necessarily unit) quaternion, as the additive chart uses it.
-    let r: Matrix3<f64> = UnitQuaternion::new_unchecked(q).to_rotation_matrix().into_inner();
+    let r: Matrix3<f64> = UnitQuaternion::new_unchecked(q)
+        .to_rotation_matrix()
+        .into_inner();
     let mut f = Vector3::zeros();
     let mut tau = Vector3::zeros();
     for s in &b.springs {

@@ -131,7 +131,11 @@ fn load_cases(common: &Common) -> Result<Vec<Case>, String> {
 }
 
 fn jobs_or_default(j: Option<usize>) -> usize {
-    j.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1))
+    j.unwrap_or_else(|| {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    })
 }
 
 /// Runs the parsed command line; returns the exit code. Errors are printed to stderr.
@@ -185,7 +189,10 @@ fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
     }
     if json {
         let v = serde_json::json!({ "scenes": scenes, "registered": registry::variants().len() });
-        println!("{}", serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?
+        );
         return Ok(EXIT_OK);
     }
     for c in &cases {
@@ -203,7 +210,11 @@ fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
             v.formulation,
             v.info.order,
             if v.info.adaptive { "adaptive " } else { "" },
-            if v.info.implicit { "implicit " } else { "explicit " },
+            if v.info.implicit {
+                "implicit "
+            } else {
+                "explicit "
+            },
             if v.info.lie_group { "lie-group" } else { "" }
         );
     }
@@ -226,7 +237,10 @@ fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
     for p in &plans {
         for v in registry::variants() {
             if let Some(r) = registry::scene_na_reason(v, &p.setup.body) {
-                println!("  {}/{}: {}/{}/{}: {r}", p.case, p.scene, v.param, v.integrator, v.formulation);
+                println!(
+                    "  {}/{}: {}/{}/{}: {r}",
+                    p.case, p.scene, v.param, v.integrator, v.formulation
+                );
             }
         }
     }
@@ -282,8 +296,16 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
         .collect();
     let mut stdout = std::io::stdout().lock();
     suite::print_table(&summary, &primary, &mut stdout).map_err(|e| e.to_string())?;
-    let runs = summary.records.iter().filter(|r| r.status != crate::summary::Status::NotApplicable).count();
-    let failed = summary.records.iter().filter(|r| r.status == crate::summary::Status::Failed).count();
+    let runs = summary
+        .records
+        .iter()
+        .filter(|r| r.status != crate::summary::Status::NotApplicable)
+        .count();
+    let failed = summary
+        .records
+        .iter()
+        .filter(|r| r.status == crate::summary::Status::Failed)
+        .count();
     println!(
         "\n{runs} runs ({failed} ended with a typed failure), {} n/a; {:.1} s; summary: {}",
         summary.records.len() - runs,
@@ -295,7 +317,11 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
 
 fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
     let cases = load_cases(common)?;
-    let plans = plan::plans(&cases, std::slice::from_ref(&a.case), std::slice::from_ref(&a.scene))?;
+    let plans = plan::plans(
+        &cases,
+        std::slice::from_ref(&a.case),
+        std::slice::from_ref(&a.scene),
+    )?;
     let mut plan = plans
         .into_iter()
         .find(|p| p.case == a.case && p.scene == a.scene)
@@ -310,13 +336,26 @@ fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
         )
     })?;
     if let Some(r) = registry::scene_na_reason(v, &plan.setup.body) {
-        return Err(format!("{}/{}/{} is n/a here: {r}", a.param, a.integrator, a.formulation));
+        return Err(format!(
+            "{}/{}/{} is n/a here: {r}",
+            a.param, a.integrator, a.formulation
+        ));
     }
     let value = match (a.dt, a.tol, v.info.adaptive) {
         (Some(h), None, false) => h,
         (None, Some(t), true) => t,
-        (Some(_), _, true) => return Err(format!("{} is adaptive: give --tol, not --dt", a.integrator)),
-        (_, Some(_), false) => return Err(format!("{} is a fixed-step method: give --dt, not --tol", a.integrator)),
+        (Some(_), _, true) => {
+            return Err(format!(
+                "{} is adaptive: give --tol, not --dt",
+                a.integrator
+            ));
+        }
+        (_, Some(_), false) => {
+            return Err(format!(
+                "{} is a fixed-step method: give --dt, not --tol",
+                a.integrator
+            ));
+        }
         _ => return Err("give --dt or --tol".into()),
     };
     if !(value.is_finite() && value > 0.0) {
@@ -350,7 +389,8 @@ fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
         "energy": out.samples.iter().map(|s| body.energy(&s.obs)).collect::<Vec<_>>(),
     });
     let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
-    reference::write_atomic(&a.out, text.as_bytes()).map_err(|e| format!("{}: {e}", a.out.display()))?;
+    reference::write_atomic(&a.out, text.as_bytes())
+        .map_err(|e| format!("{}: {e}", a.out.display()))?;
     if let Some(f) = out.failure {
         eprintln!("run failed: {:?} at t = {}: {}", f.kind, f.t, f.message);
         return Ok(EXIT_FAILED);
@@ -358,7 +398,12 @@ fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
     Ok(EXIT_OK)
 }
 
-fn cmd_reference(common: &Common, case_name: &str, scene: Option<&str>, check: bool) -> Result<i32, String> {
+fn cmd_reference(
+    common: &Common,
+    case_name: &str,
+    scene: Option<&str>,
+    check: bool,
+) -> Result<i32, String> {
     let cases = load_cases(common)?;
     let c = cases
         .iter()
@@ -370,7 +415,8 @@ fn cmd_reference(common: &Common, case_name: &str, scene: Option<&str>, check: b
     let mut all_ok = true;
     for p in &plans {
         if check {
-            let stored = reference::load(&root, &p.case, &p.scene, &p.inputs_sha256).map_err(|e| e.to_string())?;
+            let stored = reference::load(&root, &p.case, &p.scene, &p.inputs_sha256)
+                .map_err(|e| e.to_string())?;
             let (ok, msg) = refgen::check(c.reference, p, &stored.reference)?;
             println!("{} {msg}", if ok { "pass" } else { "FAIL" });
             all_ok &= ok;

@@ -127,7 +127,9 @@ pub fn run_fixed<S: Observable, M: FixedStep<S>>(
     let per_out = divides(dt_out, h_nominal)
         .ok_or_else(|| format!("step {h_nominal} does not divide the output interval {dt_out}"))?;
     if per_out * n_out != n_total {
-        return Err(format!("inconsistent grid: {per_out} x {n_out} != {n_total} steps"));
+        return Err(format!(
+            "inconsistent grid: {per_out} x {n_out} != {n_total} steps"
+        ));
     }
     let h = grid.t_end / n_total as f64;
     let mut out = RunOutput {

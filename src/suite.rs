@@ -220,7 +220,11 @@ pub fn run_catalogue(
                                 records.push(r);
                                 continue;
                             }
-                            let ladders = if opts.quick { &plan.quick } else { &plan.ladders };
+                            let ladders = if opts.quick {
+                                &plan.quick
+                            } else {
+                                &plan.ladders
+                            };
                             for &value in ladders.for_method(&v.info) {
                                 jobs.push(Job {
                                     plan: pi,
@@ -445,7 +449,15 @@ pub fn print_table(
         writeln!(
             out,
             "  {:<12} {:<18} {:<8} {:>9} {:>9} {:>9} {:>9} {:>6} {:>10}  status",
-            "param", "integrator", "form", "dt|tol", "primary", "E drift", "cond min", "order", "rhs evals"
+            "param",
+            "integrator",
+            "form",
+            "dt|tol",
+            "primary",
+            "E drift",
+            "cond min",
+            "order",
+            "rhs evals"
         )?;
         let mut last: BTreeMap<(&str, &str, &str), &Record> = BTreeMap::new();
         let mut failures: BTreeMap<(&str, &str, &str), usize> = BTreeMap::new();
@@ -453,7 +465,11 @@ pub fn print_table(
             if r.status == Status::NotApplicable {
                 continue;
             }
-            let k = (r.param.as_str(), r.integrator.as_str(), r.formulation.as_str());
+            let k = (
+                r.param.as_str(),
+                r.integrator.as_str(),
+                r.formulation.as_str(),
+            );
             last.insert(k, r);
             if r.status == Status::Failed {
                 *failures.entry(k).or_default() += 1;

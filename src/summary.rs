@@ -113,9 +113,11 @@ impl Env {
         let os = std::fs::read_to_string("/etc/os-release")
             .ok()
             .and_then(|s| {
-                s.lines()
-                    .find(|l| l.starts_with("PRETTY_NAME="))
-                    .map(|l| l.trim_start_matches("PRETTY_NAME=").trim_matches('"').to_string())
+                s.lines().find(|l| l.starts_with("PRETTY_NAME=")).map(|l| {
+                    l.trim_start_matches("PRETTY_NAME=")
+                        .trim_matches('"')
+                        .to_string()
+                })
             })
             .unwrap_or_else(|| std::env::consts::OS.to_string());
         Env {
@@ -177,7 +179,13 @@ pub struct Series {
 }
 
 /// A file-name-safe id for a run.
-pub fn run_id(param: &str, integrator: &str, formulation: &str, dt: Option<f64>, tol: Option<f64>) -> String {
+pub fn run_id(
+    param: &str,
+    integrator: &str,
+    formulation: &str,
+    dt: Option<f64>,
+    tol: Option<f64>,
+) -> String {
     let step = match (dt, tol) {
         (Some(h), _) => format!("dt{h:e}"),
         (None, Some(t)) => format!("tol{t:e}"),
@@ -201,7 +209,10 @@ mod tests {
     /// Statuses serialize to the contract's strings.
     #[test]
     fn status_strings() {
-        assert_eq!(serde_json::to_string(&Status::NotApplicable).unwrap(), "\"n/a\"");
+        assert_eq!(
+            serde_json::to_string(&Status::NotApplicable).unwrap(),
+            "\"n/a\""
+        );
         assert_eq!(serde_json::to_string(&Status::Ok).unwrap(), "\"ok\"");
     }
 }

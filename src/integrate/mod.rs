@@ -129,7 +129,10 @@ impl Limits {
             return Err(Failure::new(
                 FailureKind::WorkLimit,
                 t,
-                format!("more than max_rhs_evals = {} evaluations", self.max_rhs_evals),
+                format!(
+                    "more than max_rhs_evals = {} evaluations",
+                    self.max_rhs_evals
+                ),
             ));
         }
         Ok(())

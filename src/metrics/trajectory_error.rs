@@ -52,7 +52,10 @@ pub fn score(out: &RunOutput, reference: &Reference, translates: bool, s: &mut S
             for n in names {
                 s.null(
                     n,
-                    format!("score time {} differs from reference {}", smp.t, reference.t[k]),
+                    format!(
+                        "score time {} differs from reference {}",
+                        smp.t, reference.t[k]
+                    ),
                 );
             }
             return;
@@ -67,7 +70,12 @@ pub fn score(out: &RunOutput, reference: &Reference, translates: bool, s: &mut S
     // NaN-safe: max() ignores NaN, so a non-finite state would read as 0; runs with a
     // non-finite state have already failed, but guard anyway.
     let all_finite = scored.iter().all(|x| {
-        x.obs.q.coords.iter().chain(x.obs.omega.iter()).all(|v| v.is_finite())
+        x.obs
+            .q
+            .coords
+            .iter()
+            .chain(x.obs.omega.iter())
+            .all(|v| v.is_finite())
     });
     if !all_finite {
         for n in names {

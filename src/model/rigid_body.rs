@@ -77,7 +77,9 @@ impl RigidBody {
         pivot_com: Option<Vector3<f64>>,
     ) -> Option<Self> {
         let inertia = match pivot_com {
-            Some(x) => inertia_com + (Matrix3::identity() * x.norm_squared() - x * x.transpose()) * mass,
+            Some(x) => {
+                inertia_com + (Matrix3::identity() * x.norm_squared() - x * x.transpose()) * mass
+            }
             None => inertia_com,
         };
         let inertia_inv = inertia.try_inverse()?;
