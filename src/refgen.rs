@@ -11,7 +11,7 @@
 //! The accuracy claim is, per quantity, the larger of the cross-check difference and the
 //! reference's own energy error. `--check` recomputes the primary trajectory and passes when it
 //! differs from the stored one by at most the claim.
-use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 use crate::case::ReferenceKind;
 use crate::math::so3;
