@@ -18,6 +18,8 @@ use serde::{Deserialize, Serialize};
 use crate::math::vector::Vector;
 
 pub mod explicit_rk;
+pub mod implicit_rk;
+pub mod linalg;
 
 /// A dynamical system on a state space with a retraction.
 pub trait System: Send + Sync {
