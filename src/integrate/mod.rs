@@ -154,7 +154,8 @@ pub struct MethodInfo {
     pub adaptive: bool,
 }
 
-/// A fixed-step one-step method. The caller normalizes and checks the state after each step.
+/// A fixed-step one-step method. It counts its accepted steps, RHS evaluations and Newton
+/// iterations in `stats`; the caller normalizes and checks the state after each step.
 pub trait FixedStep<S: System> {
     fn info(&self) -> MethodInfo;
     /// Advances `x` from `t` to `t + h`.
