@@ -18,6 +18,10 @@ use serde::{Deserialize, Serialize};
 use crate::math::vector::Vector;
 
 pub mod explicit_rk;
+mod newton_stop;
+mod own_state;
+#[cfg(test)]
+mod rigid_test_support;
 
 /// A dynamical system on a state space with a retraction.
 pub trait System: Send + Sync {
