@@ -22,6 +22,7 @@ mod newton_stop;
 mod own_state;
 #[cfg(test)]
 mod rigid_test_support;
+pub mod splitting;
 
 /// A dynamical system on a state space with a retraction.
 pub trait System: Send + Sync {
