@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 use crate::math::vector::Vector;
 
 pub mod explicit_rk;
+pub mod lgvi;
 mod newton_stop;
 mod own_state;
 #[cfg(test)]
