@@ -23,6 +23,7 @@ mod newton_stop;
 mod own_state;
 #[cfg(test)]
 mod rigid_test_support;
+pub mod simo_wong;
 pub mod splitting;
 
 /// A dynamical system on a state space with a retraction.
