@@ -19,6 +19,7 @@ use crate::math::vector::Vector;
 
 pub mod explicit_rk;
 pub mod lgvi;
+pub mod lie_gen_alpha;
 mod newton_stop;
 mod own_state;
 #[cfg(test)]
