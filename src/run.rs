@@ -112,8 +112,8 @@ fn sample<S: Observable>(sys: &S, t: f64, x: &S::State) -> Sample {
     }
 }
 
-/// Runs a fixed-step method over the grid from `x0`. Methods count their own accepted steps
-/// (`stats.steps`), as the adaptive ones must.
+/// Runs a fixed-step method over the grid from `x0`; the loop counts the steps (adaptive
+/// methods count their own accepted and rejected steps).
 pub fn run_fixed<S: Observable, M: FixedStep<S>>(
     sys: &S,
     method: &mut M,
@@ -154,6 +154,7 @@ pub fn run_fixed<S: Observable, M: FixedStep<S>>(
             let t = k as f64 * h;
             let r = method.step(sys, t, h, &mut x, &mut out.stats);
             k += 1;
+            out.stats.steps += 1;
             let t1 = k as f64 * h;
             let r = r.and_then(|_| {
                 if sys.normalize(&mut x) {

@@ -20,6 +20,14 @@ use crate::math::vector::Vector;
 pub mod explicit_rk;
 pub mod implicit_rk;
 pub mod linalg;
+pub mod lgvi;
+pub mod lie_gen_alpha;
+mod newton_stop;
+mod own_state;
+#[cfg(test)]
+mod rigid_test_support;
+pub mod simo_wong;
+pub mod splitting;
 
 /// A dynamical system on a state space with a retraction.
 pub trait System: Send + Sync {
@@ -154,8 +162,8 @@ pub struct MethodInfo {
     pub adaptive: bool,
 }
 
-/// A fixed-step one-step method. It counts its accepted steps, RHS evaluations and Newton
-/// iterations in `stats`; the caller normalizes and checks the state after each step.
+/// A fixed-step one-step method. It counts its RHS evaluations and Newton iterations in
+/// `stats`; the caller counts steps, normalizes and checks the state after each step.
 pub trait FixedStep<S: System> {
     fn info(&self) -> MethodInfo;
     /// Advances `x` from `t` to `t + h`.
