@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 use crate::math::vector::Vector;
 
 pub mod explicit_rk;
+pub mod tableau;
 
 /// A dynamical system on a state space with a retraction.
 pub trait System: Send + Sync {
