@@ -17,8 +17,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::math::vector::Vector;
 
+pub mod adaptive_rk;
+pub mod crouch_grossman;
 pub mod explicit_rk;
 pub mod tableau;
+#[cfg(test)]
+pub(crate) mod test_support;
 
 /// A dynamical system on a state space with a retraction.
 pub trait System: Send + Sync {
