@@ -9,9 +9,18 @@
 //! the geometric rigid-body methods (`splitting`, `lgvi`, `simo_wong`, `lie_gen_alpha`) are
 //! written on SO(3) x R^3 in the body formulation. Per scene, the SE(3) charts (`se3_hq`,
 //! `dual_quat`) are `n/a` when the body does not translate (a pivot, or no mass).
-use crate::integrate::{Limits, MethodInfo};
-use crate::model::rigid_body::{Observation, RigidBody};
-use crate::run::{Grid, RunOutput};
+use crate::integrate::adaptive_rk::AdaptiveRk;
+use crate::integrate::crouch_grossman::CrouchGrossman;
+use crate::integrate::explicit_rk::ExplicitRk;
+use crate::integrate::implicit_rk::ImplicitRk;
+use crate::integrate::lgvi::Lgvi;
+use crate::integrate::lie_gen_alpha::LieGenAlpha;
+use crate::integrate::simo_wong::SimoWong;
+use crate::integrate::splitting::Splitting;
+use crate::integrate::{Adaptive, FixedStep, Limits, MethodInfo};
+use crate::model::rigid_body::{Observation, RigidBody, RigidSystem};
+use crate::rotation::{Body, Formulation, PoseChart, So3, Spatial};
+use crate::run::{Grid, RunOutput, Watched, run_adaptive, run_fixed};
 
 /// What a run function needs of a scene.
 #[derive(Debug, Clone)]
@@ -115,7 +124,82 @@ pub fn find(param: &str, integrator: &str, formulation: &str) -> Option<&'static
         .find(|v| v.param == param && v.integrator == integrator && v.formulation == formulation)
 }
 
-/// The table (filled in `table.rs`).
+/// A fixed-step variant of chart `$chart` and formulation `$form` built by `$ctor`.
+macro_rules! fixed {
+    ($chart:ty, $form:ty, $name:literal, $ctor:expr) => {
+        Variant {
+            param: <$chart as PoseChart>::NAME,
+            integrator: $name,
+            formulation: <$form as Formulation>::NAME,
+            info: FixedStep::<RigidSystem<$chart, $form>>::info(&$ctor),
+            se3: <$chart as PoseChart>::SE3,
+            run: |setup: &Setup, dt: f64| {
+                let sys = RigidSystem::<$chart, $form>::new(setup.body.clone());
+                let x0 = sys.state_from(&setup.initial);
+                let mut m = $ctor;
+                run_fixed(&sys, &mut m, x0, dt, &setup.grid, &setup.limits)
+            },
+        }
+    };
+}
+
+/// An adaptive variant.
+macro_rules! adaptive {
+    ($chart:ty, $form:ty, $name:literal, $ctor:ident) => {
+        Variant {
+            param: <$chart as PoseChart>::NAME,
+            integrator: $name,
+            formulation: <$form as Formulation>::NAME,
+            info: Adaptive::<Watched<RigidSystem<$chart, $form>>>::info(&AdaptiveRk::$ctor(1e-6)),
+            se3: <$chart as PoseChart>::SE3,
+            run: |setup: &Setup, tol: f64| {
+                let sys = RigidSystem::<$chart, $form>::new(setup.body.clone());
+                let x0 = sys.state_from(&setup.initial);
+                let mut m = AdaptiveRk::$ctor(tol);
+                run_adaptive(&sys, &mut m, x0, &setup.grid, &setup.limits)
+            },
+        }
+    };
+}
+
+/// The generic integrators on one chart and formulation.
+macro_rules! generic {
+    ($v:ident, $chart:ty, $form:ty) => {
+        $v.push(fixed!($chart, $form, "euler", ExplicitRk::euler()));
+        $v.push(fixed!($chart, $form, "rk4", ExplicitRk::rk4()));
+        $v.push(adaptive!($chart, $form, "dopri5", dopri5));
+        $v.push(adaptive!($chart, $form, "dop853", dop853));
+        $v.push(fixed!($chart, $form, "implicit_midpoint", ImplicitRk::implicit_midpoint()));
+        $v.push(fixed!($chart, $form, "gauss6", ImplicitRk::gauss6()));
+    };
+}
+
+/// The Crouch-Grossman methods on a Lie-group chart and formulation.
+macro_rules! crouch_grossman {
+    ($v:ident, $chart:ty, $form:ty) => {
+        $v.push(fixed!($chart, $form, "lie_euler", CrouchGrossman::lie_euler()));
+        $v.push(fixed!($chart, $form, "cg3", CrouchGrossman::cg3()));
+    };
+}
+
+fn build() -> Vec<Variant> {
+    let mut v = Vec::new();
+    generic!(v, So3, Body);
+    generic!(v, So3, Spatial);
+    crouch_grossman!(v, So3, Body);
+    crouch_grossman!(v, So3, Spatial);
+    v.push(fixed!(So3, Body, "splitting", Splitting::new()));
+    v.push(fixed!(So3, Body, "lgvi", Lgvi::new()));
+    v.push(fixed!(So3, Body, "simo_wong", SimoWong::new()));
+    v.push(fixed!(So3, Body, "lie_gen_alpha", LieGenAlpha::default()));
+    for x in &v {
+        debug_assert_eq!(x.info.name, x.integrator, "{x:?}");
+    }
+    v
+}
+
+/// The table of registered variants.
 pub fn variants() -> &'static [Variant] {
-    &[]
+    static TABLE: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
+    TABLE.get_or_init(build)
 }

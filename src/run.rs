@@ -227,6 +227,15 @@ impl<S: System> Watched<S> {
     }
 }
 
+impl<S: crate::integrate::adaptive_rk::ErrorScale> crate::integrate::adaptive_rk::ErrorScale
+    for Watched<S>
+{
+    #[inline(always)]
+    fn coords(&self, x: &S::State) -> S::Tangent {
+        self.inner.coords(x)
+    }
+}
+
 /// Runs an adaptive method over the grid from `x0`, output time to output time.
 pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
     sys: &S,

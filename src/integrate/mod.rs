@@ -17,6 +17,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::math::vector::Vector;
 
+pub mod adaptive_rk;
+pub mod crouch_grossman;
 pub mod explicit_rk;
 pub mod implicit_rk;
 pub mod linalg;
@@ -28,6 +30,9 @@ mod own_state;
 mod rigid_test_support;
 pub mod simo_wong;
 pub mod splitting;
+pub mod tableau;
+#[cfg(test)]
+pub(crate) mod test_support;
 
 /// A dynamical system on a state space with a retraction.
 pub trait System: Send + Sync {
