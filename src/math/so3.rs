@@ -208,7 +208,12 @@ pub fn cay(v: &Vector3<f64>) -> Matrix3<f64> {
 #[inline(always)]
 pub fn cay_quat(v: &Vector3<f64>) -> UnitQuaternion<f64> {
     let s = 1.0 / (1.0 + 0.25 * v.norm_squared()).sqrt();
-    UnitQuaternion::new_unchecked(Quaternion::new(s, 0.5 * s * v.x, 0.5 * s * v.y, 0.5 * s * v.z))
+    UnitQuaternion::new_unchecked(Quaternion::new(
+        s,
+        0.5 * s * v.x,
+        0.5 * s * v.y,
+        0.5 * s * v.z,
+    ))
 }
 
 /// Geodesic distance (rad, in `[0, pi]`) between two rotations given as unit quaternions.
@@ -260,7 +265,11 @@ mod tests {
     fn exp_log_round_trip() {
         for v in vecs() {
             let r = exp(&v);
-            assert!((log(&r) - v).norm() <= 1e-14 * (1.0 + v.norm()) + 1e-9 * (v.norm() > 3.0) as u8 as f64, "{v}");
+            assert!(
+                (log(&r) - v).norm()
+                    <= 1e-14 * (1.0 + v.norm()) + 1e-9 * (v.norm() > 3.0) as u8 as f64,
+                "{v}"
+            );
             let rq = exp_quat(&v).to_rotation_matrix().into_inner();
             assert!((rq - r).norm() < 1e-15 * 10.0);
             assert!((r.transpose() * r - Matrix3::identity()).norm() < 1e-15 * 10.0);
@@ -307,7 +316,10 @@ mod tests {
         ]) {
             let q = canonical(&exp_quat(&v));
             let q2 = quat_from_matrix(&exp(&v));
-            assert!((q.into_inner() - q2.into_inner()).norm() < 1e-15 * 4.0, "{v}");
+            assert!(
+                (q.into_inner() - q2.into_inner()).norm() < 1e-15 * 4.0,
+                "{v}"
+            );
             assert!(geodesic_quat(&q, &q2) < 1e-14);
         }
     }
