@@ -494,10 +494,12 @@ mod tests {
         }
     }
 
-    /// 30-digit references: mpmath 1.3.0 `odefun` (Taylor series, `mp.dps = 30`; identical
-    /// to 22 digits at `mp.dps = 36`) on `rhs` above from `q = 1`, `omega0` the doubles of
-    /// `gni()` / `tumble()`: `(t, [q_w, q_x, q_y, q_z, omega])` (script: /tmp/ode2.py of
-    /// the session that wrote this file; `python3 ode2.py 30 gni|tumble`).
+    /// 30-digit references `(t, [q_w, q_x, q_y, q_z, omega])` from `R = I`, produced by
+    /// `python3` with mpmath 1.3.0: `mp.dps = 30`, `J` and `omega0` the exact values of the
+    /// doubles of `gni()` / `tumble()` (`mpf(x)` of each double), `f` = `rhs` above in mpf
+    /// (Euler's equations in the form `(J_2 - J_3) w_2 w_3 / J_1`, ...),
+    /// `sol = mp.odefun(f, 0, [1, 0, 0, 0] + omega0)` (Taylor series), printing
+    /// `mp.nstr(sol(t), 22)`. A rerun at `mp.dps = 36` agreed in all 22 printed digits.
     #[allow(clippy::excessive_precision)]
     const MPMATH_GNI: [(f64, [f64; 7]); 3] = [
         (
@@ -537,7 +539,7 @@ mod tests {
             ],
         ),
     ];
-    /// As above for `tumble` from `R = I` (`R(t) = R0 R_I(t)`, checked separately).
+    /// As above for `tumble` (`R(t) = R0 R_I(t)` is checked separately).
     #[allow(clippy::excessive_precision)]
     const MPMATH_TUMBLE: [(f64, [f64; 7]); 5] = [
         (
