@@ -16,6 +16,7 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use crate::case::ReferenceKind;
 use crate::math::so3;
 use crate::model::rigid_body::{Observation, RigidBody};
+use crate::model::torque_free::{TorqueFreeExact, spin_exact};
 
 use crate::reference::{AccuracyClaim, CrossCheck, Provenance, Reference};
 use crate::registry::{self, Setup};
@@ -124,8 +125,7 @@ pub fn primary_track(p: &Primary, plan: &ScenePlan) -> Result<Track, String> {
             let obs = t
                 .iter()
                 .map(|&t| {
-                    let q = so3::quat_from_matrix(&(so3::exp(&(w * t)) * r0));
-                    let omega = r0.transpose() * w;
+                    let (q, omega) = spin_exact(w, r0, t);
                     Observation {
                         q,
                         x: o.x + o.v * t,
@@ -140,7 +140,7 @@ pub fn primary_track(p: &Primary, plan: &ScenePlan) -> Result<Track, String> {
             let o = setup.initial;
             let j = setup.body.inertia;
             let r0 = o.q.to_rotation_matrix().into_inner();
-            let exact = crate::model::torque_free_stub::TorqueFreeExact::new(
+            let exact = TorqueFreeExact::new(
                 Vector3::new(j[(0, 0)], j[(1, 1)], j[(2, 2)]),
                 o.omega,
                 r0,

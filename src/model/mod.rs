@@ -1,3 +1,3 @@
 //! Physical models, one file each.
 pub mod rigid_body;
-pub mod torque_free_stub;
+pub mod torque_free;
