@@ -19,7 +19,10 @@ use crate::integrate::simo_wong::SimoWong;
 use crate::integrate::splitting::Splitting;
 use crate::integrate::{Adaptive, FixedStep, Limits, MethodInfo};
 use crate::model::rigid_body::{Observation, RigidBody, RigidSystem};
-use crate::rotation::{Body, Formulation, PoseChart, So3, Spatial};
+use crate::rotation::{
+    Body, DualQuat, EulerXyz, EulerZxz, EulerZyx, Formulation, Matrix, MatrixProj, PoseChart, Quat,
+    QuatProj, RotVec, Se3Hq, So3, Spatial,
+};
 use crate::run::{Grid, RunOutput, Watched, run_adaptive, run_fixed};
 
 /// What a run function needs of a scene.
@@ -184,10 +187,14 @@ macro_rules! crouch_grossman {
 
 fn build() -> Vec<Variant> {
     let mut v = Vec::new();
-    generic!(v, So3, Body);
-    generic!(v, So3, Spatial);
-    crouch_grossman!(v, So3, Body);
-    crouch_grossman!(v, So3, Spatial);
+    macro_rules! both_formulations {
+        ($chart:ident) => {
+            generic!(v, $chart, Body);
+            generic!(v, $chart, Spatial);
+        };
+    }
+    crate::for_each_chart!(both_formulations);
+    for_lie_charts(&mut v);
     v.push(fixed!(So3, Body, "splitting", Splitting::new()));
     v.push(fixed!(So3, Body, "lgvi", Lgvi::new()));
     v.push(fixed!(So3, Body, "simo_wong", SimoWong::new()));
@@ -196,6 +203,16 @@ fn build() -> Vec<Variant> {
         debug_assert_eq!(x.info.name, x.integrator, "{x:?}");
     }
     v
+}
+
+/// The Crouch-Grossman methods on the three Lie-group charts.
+fn for_lie_charts(v: &mut Vec<Variant>) {
+    crouch_grossman!(v, So3, Body);
+    crouch_grossman!(v, So3, Spatial);
+    crouch_grossman!(v, Se3Hq, Body);
+    crouch_grossman!(v, Se3Hq, Spatial);
+    crouch_grossman!(v, DualQuat, Body);
+    crouch_grossman!(v, DualQuat, Spatial);
 }
 
 /// The table of registered variants.

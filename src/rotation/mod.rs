@@ -100,6 +100,43 @@ impl Formulation for Spatial {
 mod so3_chart;
 pub use so3_chart::So3;
 
+pub mod dual_quat;
+pub mod euler;
+pub mod matrix;
+pub mod quat;
+pub mod rotvec;
+pub mod se3_hq;
+pub use dual_quat::DualQuat;
+pub use euler::{EulerXyz, EulerZxz, EulerZyx};
+pub use matrix::{Matrix, MatrixProj};
+pub use quat::{Quat, QuatProj};
+pub use rotvec::RotVec;
+pub use se3_hq::Se3Hq;
+
+/// Invokes `$m!(T)` once for each of the eleven chart types `T` (by their bare names, in the
+/// order of design.md's variant list), so a table of charts is written once: the conformance
+/// suite and the registry use it. The caller brings the names into scope
+/// (`use crate::rotation::*`).
+#[macro_export]
+macro_rules! for_each_chart {
+    ($m:ident) => {
+        $m!(EulerXyz);
+        $m!(EulerZyx);
+        $m!(EulerZxz);
+        $m!(RotVec);
+        $m!(Quat);
+        $m!(QuatProj);
+        $m!(Matrix);
+        $m!(MatrixProj);
+        $m!(So3);
+        $m!(Se3Hq);
+        $m!(DualQuat);
+    };
+}
+
+#[cfg(test)]
+mod conformance;
+
 /// Coordinates of a chart that keeps the translation as a separate additive R^3.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Pose<Q: Copy> {
