@@ -80,7 +80,7 @@ pub fn xyz_angles(r: &Matrix3<f64>) -> Vector3<f64> {
         let diff = (r[(1, 0)] - r[(2, 1)]).atan2(r[(1, 1)] + r[(2, 0)]);
         diff + a
     };
-    Vector3::new(a, b, wrap(c))
+    Vector3::new(wrap(a), b, wrap(c))
 }
 
 /// Principal `zyx` angles of `R`. With `s = sin b`,
@@ -99,7 +99,7 @@ pub fn zyx_angles(r: &Matrix3<f64>) -> Vector3<f64> {
         let sum = (-(r[(1, 2)] + r[(0, 1)])).atan2(r[(1, 1)] - r[(0, 2)]);
         sum - a
     };
-    Vector3::new(a, b, wrap(c))
+    Vector3::new(wrap(a), b, wrap(c))
 }
 
 /// Principal `zxz` angles of `R`. With `k = cos b`,
@@ -118,7 +118,7 @@ pub fn zxz_angles(r: &Matrix3<f64>) -> Vector3<f64> {
         let diff = (r[(1, 0)] + r[(0, 1)]).atan2(r[(0, 0)] - r[(1, 1)]);
         a - diff
     };
-    Vector3::new(a, b, wrap(c))
+    Vector3::new(wrap(a), b, wrap(c))
 }
 
 /// `xyz` angle rates from the body angular velocity.
