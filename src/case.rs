@@ -372,6 +372,13 @@ impl Case {
             self.body.gravity,
             self.body.pivot_com,
         )
+        .map(|b| {
+            if self.body.mass.is_some() {
+                b
+            } else {
+                b.without_translation()
+            }
+        })
         .ok_or_else(|| CaseError {
             file: self.file.clone(),
             key: format!("scene[{}]", scene.index),

@@ -52,6 +52,9 @@ pub struct RigidBody {
     /// Body-frame position of the centre of mass relative to a fixed pivot at the world origin
     /// (None: the body is free and translates).
     pub pivot_com: Option<Vector3<f64>>,
+    /// False when the case gives the body no translational degrees of freedom (no mass):
+    /// the translation is then frozen like a pinned body's.
+    pub free_translation: bool,
 }
 
 /// The physical state of a rigid body, independent of any chart.
@@ -90,13 +93,20 @@ impl RigidBody {
             springs,
             gravity: gravity.filter(|g| *g != 0.0),
             pivot_com,
+            free_translation: true,
         })
+    }
+
+    /// The same body with its translation frozen (a case that gives it no mass).
+    pub fn without_translation(mut self) -> Self {
+        self.free_translation = false;
+        self
     }
 
     /// Whether the body translates (no pivot).
     #[inline(always)]
     pub fn translates(&self) -> bool {
-        self.pivot_com.is_none()
+        self.free_translation && self.pivot_com.is_none()
     }
 
     /// World force on the centre of mass and world torque about the reference point.
