@@ -281,6 +281,7 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
         t_end: a.t_end,
         references: common.references.clone().unwrap_or_else(default_references),
         progress: true,
+        repeats: 3,
     };
     let t0 = std::time::Instant::now();
     eprintln!(

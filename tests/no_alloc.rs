@@ -120,3 +120,31 @@ fn steps_do_not_allocate() {
     assert_eq!(after_rk4 - before, 0, "rk4 allocated");
     assert_eq!(after_dop - after_rk4, 0, "dop853 allocated");
 }
+
+/// The whole run loop of a registered variant (`quat/rk4/body` on nine_spring, 1 s, outputs
+/// every 0.1 s) allocates the same number of times for 1000 steps as for 10000: nothing is
+/// allocated per step (only the setup and the reserved sample vector).
+#[test]
+fn registry_run_allocations_do_not_grow_with_steps() {
+    let cases = mbdbench::case::embedded().unwrap();
+    let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
+    let mut p = mbdbench::plan::scene_plan(c, c.scene("large").unwrap()).unwrap();
+    p.setup.grid = mbdbench::run::Grid {
+        t_end: 1.0,
+        sample_every: 0.1,
+        score_every: 0.1,
+    };
+    let v = mbdbench::registry::find("quat", "rk4", "body").unwrap();
+    let _ = (v.run)(&p.setup, 1e-3).unwrap(); // warm up lazily initialised statics
+    let count = |dt: f64| {
+        let a0 = allocs();
+        let out = (v.run)(&p.setup, dt).unwrap();
+        let n = allocs() - a0;
+        assert_eq!(out.stats.steps, (1.0 / dt).round() as u64);
+        n
+    };
+    let coarse = count(1e-3);
+    let fine = count(1e-4);
+    assert_eq!(coarse, fine, "allocations grow with the number of steps");
+    assert!(coarse < 20, "{coarse} allocations for one run");
+}

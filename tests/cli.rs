@@ -1,0 +1,202 @@
+//! The command line against bad input and failing runs (issue 2, item 7; design.md exit
+//! codes): bad case files and missing or stale references exit 2 with an error naming the
+//! file and the key and write nothing; a diverging run and a run past its work limit are
+//! recorded as typed failures while the other runs complete; `reference --check` passes.
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_mbdbench"))
+}
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn run(args: &[&str]) -> Output {
+    bin().args(args).output().unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A cases folder holding one case file, `nine_spring.toml` edited by `edit`.
+fn cases_with(tag: &str, file: &str, edit: impl Fn(&str) -> String) -> PathBuf {
+    let d = common::temp_dir(tag);
+    let text = std::fs::read_to_string(repo().join("cases").join(file)).unwrap();
+    std::fs::write(d.join(file), edit(&text)).unwrap();
+    d
+}
+
+fn expect_bad_input(dir: &Path, key: &str, what: &str) {
+    let out = dir.join("out");
+    let o = run(&[
+        "run",
+        "--quick",
+        "--cases",
+        dir.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{what}: {e}");
+    assert!(e.contains("nine_spring.toml"), "{what}: no file in {e}");
+    assert!(e.contains(key), "{what}: no key {key} in {e}");
+    assert!(!out.join("summary.json").exists(), "{what}: wrote a summary");
+}
+
+/// Each class of bad case file exits 2 naming the file and the key.
+#[test]
+fn bad_case_files_exit_2_naming_file_and_key() {
+    let cases: &[(&str, &str, &str, &str)] = &[
+        ("unknown key", "energy_scale = 1.0e3", "energy_scale = 1.0e3\nenergy_scael = 1.0", "energy_scael"),
+        ("wrong type", "mass = 1000.0", "mass = \"heavy\"", "body.mass"),
+        ("negative mass", "mass = 1000.0", "mass = -1.0", "body.mass"),
+        ("zero mass", "mass = 1000.0", "mass = 0.0", "body.mass"),
+        (
+            "not symmetric",
+            "inertia = [[800.0, -60.0, 40.0], [-60.0, 1000.0",
+            "inertia = [[800.0, -60.0, 40.0], [-61.0, 1000.0",
+            "body.inertia",
+        ),
+        (
+            "not positive definite",
+            "inertia = [[800.0, -60.0, 40.0], [-60.0, 1000.0, -80.0], [40.0, -80.0, 1200.0]]",
+            "inertia = [[800.0, -60.0, 40.0], [-60.0, -1000.0, -80.0], [40.0, -80.0, 1200.0]]",
+            "body.inertia",
+        ),
+        (
+            "triangle inequality",
+            "inertia = [[800.0, -60.0, 40.0], [-60.0, 1000.0, -80.0], [40.0, -80.0, 1200.0]]",
+            "inertia = [[100.0, 0.0, 0.0], [0.0, 100.0, 0.0], [0.0, 0.0, 1200.0]]",
+            "body.inertia",
+        ),
+        ("t_end <= 0", "t_end = 10.0", "t_end = -10.0", "t_end"),
+        ("ladder step", "order1 = [2.0e-5", "order1 = [3.0e-2, 2.0e-5", "ladders.order1"),
+    ];
+    for (i, (what, from, to, key)) in cases.iter().enumerate() {
+        let dir = cases_with(&format!("bad{i}"), "nine_spring.toml", |t| {
+            assert!(t.contains(from), "{what}: pattern not in the case file");
+            t.replacen(from, to, 1)
+        });
+        expect_bad_input(&dir, key, what);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+/// A missing reference and a stale one (its inputs_sha256 differs) exit 2, naming the file
+/// (and, when stale, the key), before any run.
+#[test]
+fn missing_and_stale_references_exit_2() {
+    let empty = common::temp_dir("refs-empty");
+    let out = empty.join("out");
+    let o = run(&[
+        "run", "--quick", "--case", "free_body", "--references", empty.to_str().unwrap(),
+        "--out", out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("gni.json") && stderr(&o).contains("missing"), "{}", stderr(&o));
+    assert!(!out.join("summary.json").exists());
+
+    let stale = common::temp_dir("refs-stale");
+    std::fs::create_dir_all(stale.join("free_body")).unwrap();
+    let text = std::fs::read_to_string(repo().join("references/free_body/gni.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let old = v["inputs_sha256"].as_str().unwrap().to_string();
+    std::fs::write(stale.join("free_body/gni.json"), text.replace(&old, &"0".repeat(64))).unwrap();
+    let o = run(&[
+        "run", "--quick", "--case", "free_body", "--references", stale.to_str().unwrap(),
+        "--out", out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(e.contains("gni.json") && e.contains("inputs_sha256") && e.contains("stale"), "{e}");
+    let _ = std::fs::remove_dir_all(&empty);
+    let _ = std::fs::remove_dir_all(&stale);
+}
+
+/// A diverging run (euler on the heavy top at 1e-2, a growth of ~1.8 per step) ends as
+/// `failed` with its kind and time while every other run of the same command completes; a
+/// run past its step budget fails with `work_limit`.
+#[test]
+fn diverging_and_over_budget_runs_are_typed_failures() {
+    let dir = cases_with("diverge", "heavy_top.toml", |t| {
+        t.replacen("order1 = [1.0e-5, 5.0e-6]", "order1 = [1.0e-2]", 1)
+    });
+    let out = dir.join("out");
+    let o = run(&[
+        "run", "--cases", dir.to_str().unwrap(), "--param", "so3", "--param", "quat_proj",
+        "--integrator", "euler", "--integrator", "rk4", "--out", out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    let recs = s["records"].as_array().unwrap();
+    let euler: Vec<_> = recs.iter().filter(|r| r["integrator"] == "euler").collect();
+    assert!(!euler.is_empty());
+    for r in &euler {
+        assert_eq!(r["status"], "failed", "{r}");
+        let kind = r["failure"]["kind"].as_str().unwrap();
+        assert!(kind == "non_finite", "{r}");
+        assert!(r["failure"]["t"].as_f64().unwrap() > 0.0);
+    }
+    let rk4_ok = recs
+        .iter()
+        .filter(|r| r["integrator"] == "rk4" && r["status"] == "ok")
+        .count();
+    assert!(rk4_ok >= 8, "the other runs completed: {rk4_ok}");
+
+    let dir2 = cases_with("budget", "heavy_top.toml", |t| {
+        t.replacen("reference = \"numerical\"", "reference = \"numerical\"\nmax_steps = 1000", 1)
+    });
+    let o = run(&[
+        "trajectory", "--cases", dir2.to_str().unwrap(), "--case", "heavy_top", "--scene",
+        "bruls_cardona", "--param", "so3", "--integrator", "rk4", "--dt", "1e-3", "--out",
+        dir2.join("t.json").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let t: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir2.join("t.json")).unwrap()).unwrap();
+    assert_eq!(t["status"], "failed");
+    assert_eq!(t["failure"]["kind"], "work_limit");
+    let _ = std::fs::remove_dir_all(&dir);
+    let _ = std::fs::remove_dir_all(&dir2);
+}
+
+/// Usage errors exit 2 and write nothing.
+#[test]
+fn usage_errors_exit_2() {
+    let d = common::temp_dir("usage");
+    let f = d.join("t.json");
+    for args in [
+        vec!["run", "--param", "quaternion"],
+        vec!["run", "--case", "no_such_case"],
+        vec!["trajectory", "--case", "free_body", "--scene", "gni", "--param", "so3",
+             "--integrator", "rk4", "--dt", "0.03", "--out", f.to_str().unwrap()],
+        vec!["trajectory", "--case", "free_body", "--scene", "gni", "--param", "euler_xyz",
+             "--integrator", "lgvi", "--dt", "0.01", "--out", f.to_str().unwrap()],
+        vec!["frobnicate"],
+    ] {
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(!f.exists());
+    }
+}
+
+/// `reference --check` recomputes every stored reference and passes within its claim.
+#[test]
+fn stored_references_check() {
+    for case in ["nine_spring", "gimbal_lock", "free_body", "heavy_top"] {
+        let o = run(&["reference", "--case", case, "--check"]);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{case}: {}{}",
+            String::from_utf8_lossy(&o.stdout),
+            stderr(&o)
+        );
+    }
+}

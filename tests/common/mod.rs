@@ -1,0 +1,112 @@
+//! Shared helpers of the integration tests: run a slice of the catalogue in-process (one
+//! timing repeat, results only) into a temporary folder and index its records.
+#![allow(dead_code)]
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use mbdbench::case;
+use mbdbench::cli::default_references;
+use mbdbench::plan;
+use mbdbench::summary::{Record, Summary};
+use mbdbench::suite::{self, RunOptions, ScenePlan, VariantFilter};
+
+/// A fresh temporary folder for one test.
+pub fn temp_dir(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("mbdbench-test-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The plans of one case (all its scenes, or the named ones).
+pub fn plans(case_name: &str, scenes: &[&str]) -> Vec<ScenePlan> {
+    let cases = case::embedded().unwrap();
+    let scenes: Vec<String> = scenes.iter().map(|s| s.to_string()).collect();
+    plan::plans(&cases, &[case_name.to_string()], &scenes).unwrap()
+}
+
+/// Runs the selected scenes and variants with the full ladders (or the quick tier).
+pub fn run(
+    case_name: &str,
+    scenes: &[&str],
+    filter: VariantFilter,
+    quick: bool,
+    t_end: Option<f64>,
+    tag: &str,
+) -> Summary {
+    let out = temp_dir(tag);
+    let opts = RunOptions {
+        quick,
+        jobs: std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1),
+        out: out.clone(),
+        t_end,
+        references: default_references(),
+        progress: false,
+        repeats: 1,
+    };
+    let s = suite::run_catalogue(&plans(case_name, scenes), &filter, &opts).unwrap();
+    let _ = std::fs::remove_dir_all(&out);
+    s
+}
+
+/// Filter from lists of names.
+pub fn filter(params: &[&str], integrators: &[&str], formulations: &[&str]) -> VariantFilter {
+    let v = |l: &[&str]| l.iter().map(|s| s.to_string()).collect();
+    VariantFilter {
+        param: v(params),
+        integrator: v(integrators),
+        formulation: v(formulations),
+    }
+}
+
+/// Records by (scene, param, integrator, formulation, dt-or-tol bits).
+pub fn index(s: &Summary) -> BTreeMap<(String, String, String, String, u64), Record> {
+    s.records
+        .iter()
+        .filter(|r| r.dt.is_some() || r.tol.is_some())
+        .map(|r| {
+            (
+                (
+                    r.scene.clone(),
+                    r.param.clone(),
+                    r.integrator.clone(),
+                    r.formulation.clone(),
+                    r.dt.or(r.tol).unwrap().to_bits(),
+                ),
+                r.clone(),
+            )
+        })
+        .collect()
+}
+
+/// One record.
+pub fn get<'a>(
+    s: &'a Summary,
+    scene: &str,
+    param: &str,
+    integrator: &str,
+    formulation: &str,
+    value: f64,
+) -> &'a Record {
+    s.records
+        .iter()
+        .find(|r| {
+            r.scene == scene
+                && r.param == param
+                && r.integrator == integrator
+                && r.formulation == formulation
+                && r.dt.or(r.tol) == Some(value)
+        })
+        .unwrap_or_else(|| panic!("no record {scene}/{param}/{integrator}/{formulation}/{value}"))
+}
+
+/// A metric value (panics with the record when null or absent).
+pub fn metric(r: &Record, name: &str) -> f64 {
+    r.metrics
+        .get(name)
+        .copied()
+        .flatten()
+        .unwrap_or_else(|| panic!("metric {name} missing in {r:?}"))
+}

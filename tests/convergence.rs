@@ -1,0 +1,148 @@
+//! Observed orders of convergence (issue 2, item 2): every fixed-step integrator, every
+//! parameterization and both formulations, on `nine_spring/two_angles` and `free_body/gni`,
+//! fitted over the ladder points between 100x the reference's accuracy claim and 1e-2.
+mod common;
+
+use mbdbench::registry;
+use mbdbench::summary::{Status, Summary};
+
+fn declared(integrator: &str) -> f64 {
+    registry::variants()
+        .iter()
+        .find(|v| v.integrator == integrator)
+        .map(|v| v.info.order as f64)
+        .unwrap()
+}
+
+/// Checks every fit of a scene; returns the variants checked.
+fn check_scene(s: &Summary, scene: &str, exempt: &[(&str, &str)]) -> usize {
+    let mut checked = 0;
+    let mut bad = vec![];
+    for f in s.fits.iter().filter(|f| f.scene == scene) {
+        let failed = s.records.iter().any(|r| {
+            r.scene == scene
+                && r.param == f.param
+                && r.integrator == f.integrator
+                && r.formulation == f.formulation
+                && r.status == Status::Failed
+        });
+        if failed {
+            continue; // asserted separately (the order claim is for runs that reach t_end)
+        }
+        if exempt.contains(&(f.param.as_str(), f.integrator.as_str()))
+            || exempt.contains(&("*", f.integrator.as_str()))
+        {
+            continue;
+        }
+        let p = declared(&f.integrator);
+        match f.order {
+            Some(o) if (o - p).abs() <= 0.25 => checked += 1,
+            _ => bad.push(format!(
+                "{}/{}/{}: order {:?} (declared {p}), reason {:?}, points {:?}",
+                f.param, f.integrator, f.formulation, f.order, f.reason, f.points
+            )),
+        }
+    }
+    assert!(bad.is_empty(), "{scene}: {} fits off:\n{}", bad.len(), bad.join("\n"));
+    checked
+}
+
+/// On nine_spring/two_angles every fixed-step variant's observed order is within 0.25 of its
+/// declared order (RKMK rk4 on so3 included: 4, not the 2 it drops to without dexp_inv).
+#[test]
+fn orders_on_nine_spring_two_angles() {
+    let fixed: Vec<&str> = registry::INTEGRATORS
+        .iter()
+        .copied()
+        .filter(|i| !matches!(*i, "dopri5" | "dop853"))
+        .collect();
+    let s = common::run(
+        "nine_spring",
+        &["two_angles"],
+        common::filter(&[], &fixed, &[]),
+        false,
+        None,
+        "conv-ns",
+    );
+    let n = check_scene(&s, "two_angles", &[]);
+    // 11 charts x 2 formulations x 4 generic + 3 Lie charts x 2 x 2 Crouch-Grossman + 4 geometric
+    assert_eq!(n, 88 + 12 + 4, "every fixed-step variant has a fit");
+    let rk4_so3 = s
+        .fits
+        .iter()
+        .find(|f| f.param == "so3" && f.integrator == "rk4" && f.formulation == "body")
+        .unwrap();
+    assert!((rk4_so3.order.unwrap() - 4.0).abs() <= 0.25);
+}
+
+/// On free_body/gni every fixed-step variant that reaches t_end has its declared order, except
+/// gauss6, which is more accurate than the reference floor at every step dividing
+/// score_every (asserted: all its errors lie below 100x the claim); euler_zxz starts in its
+/// singular set and fails with singular_chart at t = 0 for every method.
+#[test]
+fn orders_on_free_body_gni() {
+    let fixed: Vec<&str> = registry::INTEGRATORS
+        .iter()
+        .copied()
+        .filter(|i| !matches!(*i, "dopri5" | "dop853"))
+        .collect();
+    let s = common::run(
+        "free_body",
+        &["gni"],
+        common::filter(&[], &fixed, &[]),
+        false,
+        None,
+        "conv-gni",
+    );
+    let n = check_scene(&s, "gni", &[("*", "gauss6")]);
+    // 9 charts (se3_hq and dual_quat are n/a without translation, euler_zxz fails) x 2 x 3
+    // (euler, rk4, implicit_midpoint) + so3 x 2 x 2 Crouch-Grossman + 4 geometric
+    assert_eq!(n, 8 * 2 * 3 + 4 + 4, "fits checked");
+    let plan = &common::plans("free_body", &["gni"])[0];
+    let stored = mbdbench::reference::load(
+        &mbdbench::cli::default_references(),
+        "free_body",
+        "gni",
+        &plan.inputs_sha256,
+    )
+    .unwrap();
+    let floor = 100.0 * mbdbench::suite::claim_for(&stored.reference, "rotation_error_max");
+    for r in s.records.iter().filter(|r| r.integrator == "gauss6" && r.status == Status::Ok) {
+        assert!(common::metric(r, "rotation_error_max") < floor, "{r:?}");
+    }
+    for r in s.records.iter().filter(|r| r.param == "euler_zxz") {
+        let f = r.failure.as_ref().expect("euler_zxz fails on gni");
+        assert_eq!(
+            serde_json::to_value(f.kind).unwrap(),
+            serde_json::json!("singular_chart")
+        );
+        assert_eq!(f.t, 0.0);
+        assert_eq!(r.stats.rhs_evals, 0, "no garbage integrated");
+    }
+}
+
+/// Adaptive methods have no step ladder: their error falls as the tolerance tightens while the
+/// RHS evaluations grow (error against work, recorded for the work-precision view).
+#[test]
+fn adaptive_error_against_work() {
+    let s = common::run(
+        "nine_spring",
+        &["two_angles"],
+        common::filter(&["so3", "quat_proj"], &["dopri5", "dop853"], &["body"]),
+        false,
+        None,
+        "conv-adaptive",
+    );
+    for p in ["so3", "quat_proj"] {
+        for i in ["dopri5", "dop853"] {
+            let e6 = common::get(&s, "two_angles", p, i, "body", 1e-6);
+            let e10 = common::get(&s, "two_angles", p, i, "body", 1e-10);
+            let (a, b) = (
+                common::metric(e6, "rotation_error_max"),
+                common::metric(e10, "rotation_error_max"),
+            );
+            assert!(b < a / 100.0, "{p}/{i}: {a:e} -> {b:e}");
+            assert!(e10.stats.rhs_evals > e6.stats.rhs_evals);
+        }
+    }
+}
