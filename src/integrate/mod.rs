@@ -21,9 +21,9 @@ pub mod adaptive_rk;
 pub mod crouch_grossman;
 pub mod explicit_rk;
 pub mod implicit_rk;
-pub mod linalg;
 pub mod lgvi;
 pub mod lie_gen_alpha;
+pub mod linalg;
 mod newton_stop;
 mod own_state;
 #[cfg(test)]
@@ -193,6 +193,24 @@ pub trait Adaptive<S: System> {
         t0: f64,
         t1: f64,
         x: &mut S::State,
+        stats: &mut Stats,
+        limits: &Limits,
+    ) -> Result<(), Failure>;
+    /// Integrates `x` from `t0` to `t0 + n_out dt_out` with free steps (only the last one is
+    /// clipped, to land exactly on the end) and hands out the state at every output time
+    /// `t_k = t0 + k dt_out` (computed from the integer `k`), `k = 1..=n_out` in order, by
+    /// `on_output(k, &state)`: the method's dense output, normalized (a copy: the integration
+    /// state is not touched). An error from `on_output` ends the run. `x` ends at the state of
+    /// the last accepted step, on failure at the last state accepted before it.
+    #[allow(clippy::too_many_arguments, clippy::type_complexity)]
+    fn integrate_dense(
+        &mut self,
+        sys: &S,
+        t0: f64,
+        x: &mut S::State,
+        dt_out: f64,
+        n_out: u64,
+        on_output: &mut dyn FnMut(u64, &S::State) -> Result<(), Failure>,
         stats: &mut Stats,
         limits: &Limits,
     ) -> Result<(), Failure>;
