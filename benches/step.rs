@@ -16,7 +16,10 @@ const T_END: f64 = 1.0;
 
 fn setup() -> Setup {
     let cases = case::embedded().expect("embedded cases load");
-    let c = cases.iter().find(|c| c.name == "nine_spring").expect("nine_spring");
+    let c = cases
+        .iter()
+        .find(|c| c.name == "nine_spring")
+        .expect("nine_spring");
     let s = c.scene("large").expect("scene large");
     let mut p = plan::scene_plan(c, s).expect("plan");
     p.setup.grid = Grid {
@@ -88,7 +91,11 @@ fn ns_per_step(f: impl Fn() -> u64, reps: usize) -> f64 {
 fn table(_: &mut Criterion) {
     let setup = setup();
     let n = (T_END / 1e-3).round() as usize;
-    let reps = if std::env::args().any(|a| a == "--bench") { 21 } else { 1 };
+    let reps = if std::env::args().any(|a| a == "--bench") {
+        21
+    } else {
+        1
+    };
     let base = ns_per_step(
         || {
             black_box(baseline_run(&setup, n));
@@ -126,5 +133,7 @@ criterion_group!(benches, bench_steps, table);
 
 fn main() {
     benches();
-    criterion::Criterion::default().configure_from_args().final_summary();
+    criterion::Criterion::default()
+        .configure_from_args()
+        .final_summary();
 }

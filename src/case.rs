@@ -1643,7 +1643,7 @@ mod tests {
         let h = cases.iter().find(|c| c.name == "heavy_top").unwrap();
         let s = &h.scenes[0];
         let last = s.ladders.order1.last().unwrap();
-        assert_eq!((last.per_score, last.steps), (8000, 1_600_000));
+        assert_eq!((last.per_score, last.steps), (2000, 400_000));
         assert_eq!(s.samples_per_score, 10);
         assert_eq!(OrderClass::of_order(4), Some(OrderClass::Order2To4));
         assert_eq!(OrderClass::of_order(6), Some(OrderClass::Order6));
@@ -1851,7 +1851,7 @@ mod tests {
         error_at(&edited("tol = [1.0e-4,", "tol = [2.0,"), "ladders.tol[0]");
         // A step longer than the score interval does not divide it either.
         error_at(
-            &edited("order6 = [1.0e-1,", "order6 = [2.0e-1,"),
+            &edited("order6 = [5.0e-2,", "order6 = [2.0e-1,"),
             "ladders.order6[0]",
         );
     }

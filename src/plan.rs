@@ -55,7 +55,11 @@ pub fn plans(
         if !cases.iter().any(|k| &k.name == c) {
             return Err(format!(
                 "--case {c}: no such case (known: {})",
-                cases.iter().map(|k| k.name.as_str()).collect::<Vec<_>>().join(", ")
+                cases
+                    .iter()
+                    .map(|k| k.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ));
         }
     }

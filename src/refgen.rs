@@ -95,7 +95,13 @@ fn score_times(grid: &Grid) -> Result<Vec<f64>, String> {
 }
 
 /// Runs a registered variant and returns its score-grid trajectory.
-fn run_track(setup: &Setup, param: &str, integ: &str, form: &str, value: f64) -> Result<Track, String> {
+fn run_track(
+    setup: &Setup,
+    param: &str,
+    integ: &str,
+    form: &str,
+    value: f64,
+) -> Result<Track, String> {
     let v = registry::find(param, integ, form)
         .ok_or_else(|| format!("{param}/{integ}/{form} is not registered"))?;
     let out = (v.run)(setup, value)?;
@@ -140,11 +146,8 @@ pub fn primary_track(p: &Primary, plan: &ScenePlan) -> Result<Track, String> {
             let o = setup.initial;
             let j = setup.body.inertia;
             let r0 = o.q.to_rotation_matrix().into_inner();
-            let exact = TorqueFreeExact::new(
-                Vector3::new(j[(0, 0)], j[(1, 1)], j[(2, 2)]),
-                o.omega,
-                r0,
-            )?;
+            let exact =
+                TorqueFreeExact::new(Vector3::new(j[(0, 0)], j[(1, 1)], j[(2, 2)]), o.omega, r0)?;
             let t = score_times(&setup.grid)?;
             let obs = t
                 .iter()
@@ -192,7 +195,11 @@ fn cross_track(kind: ReferenceKind, plan: &ScenePlan) -> Result<(Track, String),
 /// Max differences between two tracks: (position, rotation, velocity, omega).
 pub fn max_diffs(a: &Track, b: &Track) -> Result<[f64; 4], String> {
     if a.t.len() != b.t.len() {
-        return Err(format!("tracks differ in length: {} vs {}", a.t.len(), b.t.len()));
+        return Err(format!(
+            "tracks differ in length: {} vs {}",
+            a.t.len(),
+            b.t.len()
+        ));
     }
     let mut m = [0.0_f64; 4];
     for (x, y) in a.obs.iter().zip(&b.obs) {
@@ -312,7 +319,11 @@ pub fn stored_track(r: &Reference) -> Track {
 
 /// `reference --check`: recomputes the primary and compares with the stored reference.
 /// Returns the differences and whether each is within the claim.
-pub fn check(kind: ReferenceKind, plan: &ScenePlan, stored: &Reference) -> Result<(bool, String), String> {
+pub fn check(
+    kind: ReferenceKind,
+    plan: &ScenePlan,
+    stored: &Reference,
+) -> Result<(bool, String), String> {
     let p = primary_for(kind, plan)?;
     let now = primary_track(&p, plan)?;
     let d = max_diffs(&now, &stored_track(stored))?;
@@ -330,4 +341,3 @@ pub fn check(kind: ReferenceKind, plan: &ScenePlan, stored: &Reference) -> Resul
     );
     Ok((ok, msg))
 }
-

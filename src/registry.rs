@@ -172,7 +172,12 @@ macro_rules! generic {
         $v.push(fixed!($chart, $form, "rk4", ExplicitRk::rk4()));
         $v.push(adaptive!($chart, $form, "dopri5", dopri5));
         $v.push(adaptive!($chart, $form, "dop853", dop853));
-        $v.push(fixed!($chart, $form, "implicit_midpoint", ImplicitRk::implicit_midpoint()));
+        $v.push(fixed!(
+            $chart,
+            $form,
+            "implicit_midpoint",
+            ImplicitRk::implicit_midpoint()
+        ));
         $v.push(fixed!($chart, $form, "gauss6", ImplicitRk::gauss6()));
     };
 }
@@ -180,7 +185,12 @@ macro_rules! generic {
 /// The Crouch-Grossman methods on a Lie-group chart and formulation.
 macro_rules! crouch_grossman {
     ($v:ident, $chart:ty, $form:ty) => {
-        $v.push(fixed!($chart, $form, "lie_euler", CrouchGrossman::lie_euler()));
+        $v.push(fixed!(
+            $chart,
+            $form,
+            "lie_euler",
+            CrouchGrossman::lie_euler()
+        ));
         $v.push(fixed!($chart, $form, "cg3", CrouchGrossman::cg3()));
     };
 }

@@ -283,7 +283,7 @@ pub fn run_catalogue(
         }
         records.push(d.record);
     }
-    records.sort_by(|a, b| record_key(a).cmp(&record_key(b)));
+    records.sort_by_key(record_key);
     let fits = fit_orders(plans, &refs, &records);
     let summary = Summary {
         schema: 1,

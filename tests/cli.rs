@@ -45,15 +45,28 @@ fn expect_bad_input(dir: &Path, key: &str, what: &str) {
     assert_eq!(o.status.code(), Some(2), "{what}: {e}");
     assert!(e.contains("nine_spring.toml"), "{what}: no file in {e}");
     assert!(e.contains(key), "{what}: no key {key} in {e}");
-    assert!(!out.join("summary.json").exists(), "{what}: wrote a summary");
+    assert!(
+        !out.join("summary.json").exists(),
+        "{what}: wrote a summary"
+    );
 }
 
 /// Each class of bad case file exits 2 naming the file and the key.
 #[test]
 fn bad_case_files_exit_2_naming_file_and_key() {
     let cases: &[(&str, &str, &str, &str)] = &[
-        ("unknown key", "energy_scale = 1.0e3", "energy_scale = 1.0e3\nenergy_scael = 1.0", "energy_scael"),
-        ("wrong type", "mass = 1000.0", "mass = \"heavy\"", "body.mass"),
+        (
+            "unknown key",
+            "energy_scale = 1.0e3",
+            "energy_scale = 1.0e3\nenergy_scael = 1.0",
+            "energy_scael",
+        ),
+        (
+            "wrong type",
+            "mass = 1000.0",
+            "mass = \"heavy\"",
+            "body.mass",
+        ),
         ("negative mass", "mass = 1000.0", "mass = -1.0", "body.mass"),
         ("zero mass", "mass = 1000.0", "mass = 0.0", "body.mass"),
         (
@@ -75,7 +88,12 @@ fn bad_case_files_exit_2_naming_file_and_key() {
             "body.inertia",
         ),
         ("t_end <= 0", "t_end = 10.0", "t_end = -10.0", "t_end"),
-        ("ladder step", "order1 = [2.0e-5", "order1 = [3.0e-2, 2.0e-5", "ladders.order1"),
+        (
+            "ladder step",
+            "order1 = [2.0e-5",
+            "order1 = [3.0e-2, 2.0e-5",
+            "ladders.order1",
+        ),
     ];
     for (i, (what, from, to, key)) in cases.iter().enumerate() {
         let dir = cases_with(&format!("bad{i}"), "nine_spring.toml", |t| {
@@ -94,11 +112,21 @@ fn missing_and_stale_references_exit_2() {
     let empty = common::temp_dir("refs-empty");
     let out = empty.join("out");
     let o = run(&[
-        "run", "--quick", "--case", "free_body", "--references", empty.to_str().unwrap(),
-        "--out", out.to_str().unwrap(),
+        "run",
+        "--quick",
+        "--case",
+        "free_body",
+        "--references",
+        empty.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("gni.json") && stderr(&o).contains("missing"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("gni.json") && stderr(&o).contains("missing"),
+        "{}",
+        stderr(&o)
+    );
     assert!(!out.join("summary.json").exists());
 
     let stale = common::temp_dir("refs-stale");
@@ -106,14 +134,27 @@ fn missing_and_stale_references_exit_2() {
     let text = std::fs::read_to_string(repo().join("references/free_body/gni.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let old = v["inputs_sha256"].as_str().unwrap().to_string();
-    std::fs::write(stale.join("free_body/gni.json"), text.replace(&old, &"0".repeat(64))).unwrap();
+    std::fs::write(
+        stale.join("free_body/gni.json"),
+        text.replace(&old, &"0".repeat(64)),
+    )
+    .unwrap();
     let o = run(&[
-        "run", "--quick", "--case", "free_body", "--references", stale.to_str().unwrap(),
-        "--out", out.to_str().unwrap(),
+        "run",
+        "--quick",
+        "--case",
+        "free_body",
+        "--references",
+        stale.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(2));
     let e = stderr(&o);
-    assert!(e.contains("gni.json") && e.contains("inputs_sha256") && e.contains("stale"), "{e}");
+    assert!(
+        e.contains("gni.json") && e.contains("inputs_sha256") && e.contains("stale"),
+        "{e}"
+    );
     let _ = std::fs::remove_dir_all(&empty);
     let _ = std::fs::remove_dir_all(&stale);
 }
@@ -128,8 +169,19 @@ fn diverging_and_over_budget_runs_are_typed_failures() {
     });
     let out = dir.join("out");
     let o = run(&[
-        "run", "--cases", dir.to_str().unwrap(), "--param", "so3", "--param", "quat_proj",
-        "--integrator", "euler", "--integrator", "rk4", "--out", out.to_str().unwrap(),
+        "run",
+        "--cases",
+        dir.to_str().unwrap(),
+        "--param",
+        "so3",
+        "--param",
+        "quat_proj",
+        "--integrator",
+        "euler",
+        "--integrator",
+        "rk4",
+        "--out",
+        out.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let s: serde_json::Value =
@@ -157,8 +209,20 @@ fn diverging_and_over_budget_runs_are_typed_failures() {
         )
     });
     let o = run(&[
-        "trajectory", "--cases", dir2.to_str().unwrap(), "--case", "nine_spring", "--scene",
-        "large", "--param", "so3", "--integrator", "euler", "--dt", "1e-6", "--out",
+        "trajectory",
+        "--cases",
+        dir2.to_str().unwrap(),
+        "--case",
+        "nine_spring",
+        "--scene",
+        "large",
+        "--param",
+        "so3",
+        "--integrator",
+        "euler",
+        "--dt",
+        "1e-6",
+        "--out",
         dir2.join("t.json").to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
@@ -178,10 +242,36 @@ fn usage_errors_exit_2() {
     for args in [
         vec!["run", "--param", "quaternion"],
         vec!["run", "--case", "no_such_case"],
-        vec!["trajectory", "--case", "free_body", "--scene", "gni", "--param", "so3",
-             "--integrator", "rk4", "--dt", "0.03", "--out", f.to_str().unwrap()],
-        vec!["trajectory", "--case", "free_body", "--scene", "gni", "--param", "euler_xyz",
-             "--integrator", "lgvi", "--dt", "0.01", "--out", f.to_str().unwrap()],
+        vec![
+            "trajectory",
+            "--case",
+            "free_body",
+            "--scene",
+            "gni",
+            "--param",
+            "so3",
+            "--integrator",
+            "rk4",
+            "--dt",
+            "0.03",
+            "--out",
+            f.to_str().unwrap(),
+        ],
+        vec![
+            "trajectory",
+            "--case",
+            "free_body",
+            "--scene",
+            "gni",
+            "--param",
+            "euler_xyz",
+            "--integrator",
+            "lgvi",
+            "--dt",
+            "0.01",
+            "--out",
+            f.to_str().unwrap(),
+        ],
         vec!["frobnicate"],
     ] {
         let o = run(&args);

@@ -43,7 +43,12 @@ fn check_scene(s: &Summary, scene: &str, exempt: &[(&str, &str)]) -> usize {
             )),
         }
     }
-    assert!(bad.is_empty(), "{scene}: {} fits off:\n{}", bad.len(), bad.join("\n"));
+    assert!(
+        bad.is_empty(),
+        "{scene}: {} fits off:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
     checked
 }
 
@@ -76,8 +81,8 @@ fn orders_on_nine_spring_two_angles() {
 }
 
 /// On free_body/gni every fixed-step variant that reaches t_end has its declared order, except
-/// gauss6, which is more accurate than the reference floor at every step dividing
-/// score_every (asserted: all its errors lie below 100x the claim); euler_zxz starts in its
+/// gauss6, which at every step dividing score_every has at most two errors above the
+/// reference floor (100x the claim), whose ratio shows order >= 5.75; euler_zxz starts in its
 /// singular set and fails with singular_chart at t = 0 for every method.
 #[test]
 fn orders_on_free_body_gni() {
@@ -94,10 +99,37 @@ fn orders_on_free_body_gni() {
         None,
         "conv-gni",
     );
-    let n = check_scene(&s, "gni", &[("*", "gauss6")]);
+    let n = check_scene(
+        &s,
+        "gni",
+        &[("*", "gauss6"), ("quat", "euler"), ("matrix", "euler")],
+    );
+    // quat and matrix with euler: in the spatial formulation their errors stay above 1e-2
+    // on the ladder (3e8 steps a run would be needed to enter the window), in the body one
+    // they fit normally. Their order is checked from the ratios of successive ladder errors.
+    for p in ["quat", "matrix"] {
+        for form in ["body", "spatial"] {
+            let e: Vec<f64> = [1.6e-5, 8.0e-6, 4.0e-6]
+                .iter()
+                .map(|h| {
+                    common::metric(
+                        common::get(&s, "gni", p, "euler", form, *h),
+                        "rotation_error_max",
+                    )
+                })
+                .collect();
+            for w in e.windows(2) {
+                let local = (w[0] / w[1]).log2();
+                assert!(
+                    (local - 1.0).abs() <= 0.25,
+                    "{p}/euler/{form}: errors {e:?}"
+                );
+            }
+        }
+    }
     // 9 charts (se3_hq and dual_quat are n/a without translation, euler_zxz fails) x 2 x 3
     // (euler, rk4, implicit_midpoint) + so3 x 2 x 2 Crouch-Grossman + 4 geometric
-    assert_eq!(n, 8 * 2 * 3 + 4 + 4, "fits checked");
+    assert_eq!(n, 8 * 2 * 3 - 4 + 4 + 4, "fits checked");
     let plan = &common::plans("free_body", &["gni"])[0];
     let stored = mbdbench::reference::load(
         &mbdbench::cli::default_references(),
@@ -107,10 +139,34 @@ fn orders_on_free_body_gni() {
     )
     .unwrap();
     let floor = 100.0 * mbdbench::suite::claim_for(&stored.reference, "rotation_error_max");
-    for r in s.records.iter().filter(|r| r.integrator == "gauss6" && r.status == Status::Ok) {
-        assert!(common::metric(r, "rotation_error_max") < floor, "{r:?}");
+    // gauss6: at most two ladder points lie above the floor; where two do, their error ratio
+    // shows at least order 6 - 0.25, and the fit is null for the stated reason.
+    for f in s
+        .fits
+        .iter()
+        .filter(|f| f.integrator == "gauss6" && f.param != "euler_zxz")
+    {
+        let e: Vec<f64> = [0.1, 0.05, 0.025]
+            .iter()
+            .map(|h| {
+                common::metric(
+                    common::get(&s, "gni", &f.param, "gauss6", &f.formulation, *h),
+                    "rotation_error_max",
+                )
+            })
+            .collect();
+        assert!(e.iter().filter(|x| **x >= floor).count() < 3, "{f:?}");
+        assert!(f.order.is_none() && f.reason.as_deref().unwrap().contains("lie between"));
+        if e[1] >= floor {
+            let local = (e[0] / e[1]).log2();
+            assert!(local >= 5.75, "{}/{}: errors {e:?}", f.param, f.formulation);
+        }
     }
-    for r in s.records.iter().filter(|r| r.param == "euler_zxz") {
+    for r in s
+        .records
+        .iter()
+        .filter(|r| r.param == "euler_zxz" && r.status != Status::NotApplicable)
+    {
         let f = r.failure.as_ref().expect("euler_zxz fails on gni");
         assert_eq!(
             serde_json::to_value(f.kind).unwrap(),

@@ -24,7 +24,11 @@ fn simo_wong_conserves_energy_to_round_off() {
             None,
             &format!("inv-sw-{case}"),
         );
-        let runs: Vec<_> = s.records.iter().filter(|r| r.status != Status::NotApplicable).collect();
+        let runs: Vec<_> = s
+            .records
+            .iter()
+            .filter(|r| r.status != Status::NotApplicable)
+            .collect();
         assert!(runs.len() >= 4, "{case}: {} runs", runs.len());
         for r in runs {
             assert_eq!(r.status, Status::Ok, "{r:?}");
@@ -39,13 +43,23 @@ fn energy_window_ratio(body: &RigidBody, out: &mbdbench::run::RunOutput) -> (f64
     let e0 = e[0];
     let n = e.len();
     let tenth = n / 10;
-    let head = e[..tenth].iter().map(|x| (x - e0).abs()).fold(0.0, f64::max);
-    let tail = e[n - tenth..].iter().map(|x| (x - e0).abs()).fold(0.0, f64::max);
+    let head = e[..tenth]
+        .iter()
+        .map(|x| (x - e0).abs())
+        .fold(0.0, f64::max);
+    let tail = e[n - tenth..]
+        .iter()
+        .map(|x| (x - e0).abs())
+        .fold(0.0, f64::max);
     (head, tail)
 }
 
-/// splitting and lgvi on free_body/gni with t_end = 10000 (10^6 steps of 1e-2): the energy
-/// error over [0.9 T, T] is at most twice that over [0, 0.1 T] (no secular drift).
+/// splitting and lgvi on free_body/gni with t_end = 10000 (10^6 steps of 1e-2): no secular
+/// energy error. splitting: max |dE| over [0.9 T, T] is at most twice that over [0, 0.1 T]
+/// (its truncation error is bounded). lgvi is the Moser-Veselov map on a torque-free body and
+/// conserves the energy exactly, so only round-off remains, which grows like a random walk
+/// (Brouwer's law: about sqrt(10) between the two windows): asserted as at most 4x, and below
+/// 1e-12 (a linear round-off bias of ~3e-17 a step, 3.4e-11 at T, was found and removed).
 #[test]
 fn symplectic_energy_error_is_not_secular() {
     let mut plan = common::plans("free_body", &["gni"]).remove(0);
@@ -56,7 +70,14 @@ fn symplectic_energy_error_is_not_secular() {
         assert!(out.failure.is_none(), "{integ}: {:?}", out.failure);
         let (head, tail) = energy_window_ratio(&plan.setup.body, &out);
         eprintln!("{integ}: max |dE| first tenth {head:.3e}, last tenth {tail:.3e}");
-        assert!(tail <= 2.0 * head, "{integ}: {tail:e} > 2 x {head:e}");
+        if integ == "splitting" {
+            assert!(tail <= 2.0 * head, "{integ}: {tail:e} > 2 x {head:e}");
+        } else {
+            assert!(
+                tail <= 4.0 * head && tail < 1e-12,
+                "{integ}: {tail:e} vs {head:e}"
+            );
+        }
     }
 }
 
@@ -69,7 +90,14 @@ fn constraint_residuals() {
             case,
             &[],
             common::filter(
-                &["quat_proj", "matrix_proj", "so3", "quat", "matrix", "dual_quat"],
+                &[
+                    "quat_proj",
+                    "matrix_proj",
+                    "so3",
+                    "quat",
+                    "matrix",
+                    "dual_quat",
+                ],
                 &[],
                 &[],
             ),
@@ -81,7 +109,13 @@ fn constraint_residuals() {
             let c = common::metric(r, "constraint_error_max");
             assert!(c.is_finite());
             if matches!(r.param.as_str(), "quat_proj" | "matrix_proj" | "so3") {
-                assert!(c < 1e-13, "{case}/{}/{}/{}: {c:e}", r.scene, r.param, r.integrator);
+                assert!(
+                    c < 1e-13,
+                    "{case}/{}/{}/{}: {c:e}",
+                    r.scene,
+                    r.param,
+                    r.integrator
+                );
             }
         }
     }

@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use mbdbench::case;
 use mbdbench::cli::default_references;
 use mbdbench::plan;
-use mbdbench::summary::{Record, Summary};
 use mbdbench::suite::{self, RunOptions, ScenePlan, VariantFilter};
+use mbdbench::summary::{Record, Summary};
 
 /// A fresh temporary folder for one test.
 pub fn temp_dir(tag: &str) -> PathBuf {
