@@ -101,7 +101,7 @@ impl<S: System> FixedStep<S> for CrouchGrossman<S> {
         }
     }
 
-    /// One step; counts one step and `stages` RHS evaluations.
+    /// One step; counts its `stages` RHS evaluations (the caller counts the step).
     fn step(
         &mut self,
         sys: &S,

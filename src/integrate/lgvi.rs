@@ -36,6 +36,7 @@
 //! (`stats.newton_iters`).
 use nalgebra::{Matrix3, UnitQuaternion, Vector3, Vector6};
 
+use super::body_momentum::{is_finite_state, omega_from_pi};
 use super::newton_stop::{NewtonStop, relative, update_norm};
 use super::own_state::{OwnState, So3State};
 use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats};
@@ -173,16 +174,9 @@ impl FixedStep<RigidSystem<So3, Body>> for Lgvi {
         if translates {
             v += f1 * (0.5 * h / b.mass);
         }
-        // One refinement: `J omega1 = Pi` to round-off. `inertia_inv * Pi` alone has the fixed
-        // error of the computed inverse, which the next step's `J omega` turns into a drift of
-        // `|Pi|` by about 1 ulp a step (measured: 2e-13 of |L| in 1000 steps, full inertia).
-        let mut omega1 = b.inertia_inv * pi1;
-        omega1 += b.inertia_inv * (pi1 - b.inertia * omega1);
+        let omega1 = omega_from_pi(b, &pi1);
         out.vel = Vector6::new(v.x, v.y, v.z, omega1.x, omega1.y, omega1.z);
-        let finite = out.vel.iter().all(|c| c.is_finite())
-            && q1.coords.iter().all(|c| c.is_finite())
-            && x.iter().all(|c| c.is_finite());
-        if !finite {
+        if !is_finite_state(&out) {
             self.own.clear();
             return Err(Failure::new(
                 FailureKind::NonFinite,

@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 use crate::math::vector::Vector;
 
 pub mod adaptive_rk;
+mod body_momentum;
 pub mod crouch_grossman;
 pub mod explicit_rk;
 pub mod implicit_rk;

@@ -115,7 +115,11 @@ impl StepData<'_> {
         // recovering v1 from an absolute x1 would cancel about |x| eps / h each step, which on
         // nine_spring at 6.25e-4 s drifted the energy by 2.8e-12 in 16000 steps.
         let dx = z.fixed_rows::<3>(3).into_owned();
-        let x1 = if self.translates { self.x0 + dx } else { self.x0 };
+        let x1 = if self.translates {
+            self.x0 + dx
+        } else {
+            self.x0
+        };
         let c = so3::cay(&theta);
         let r1 = self.r0 * c;
         let rbar = (self.r0 + r1) * 0.5;

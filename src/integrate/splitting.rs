@@ -32,6 +32,7 @@
 //! `h |omega|` near `pi` or above resolves nothing but stays on the group.
 use nalgebra::{Matrix3, Quaternion, SymmetricEigen, UnitQuaternion, Vector3, Vector6};
 
+use super::body_momentum::{is_finite_state, omega_from_pi};
 use super::own_state::{OwnState, So3State};
 use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats};
 use crate::model::rigid_body::{RigidBody, RigidSystem};
@@ -199,17 +200,10 @@ impl FixedStep<RigidSystem<So3, Body>> for Splitting {
         if translates {
             v += f1 * (0.5 * h / b.mass);
         }
-        // One refinement: `J omega1 = Pi` to round-off. `inertia_inv * Pi` alone has the fixed
-        // error of the computed inverse, which the next step's `J omega` turns into a drift of
-        // `|Pi|` by about 1 ulp a step (measured: 2e-13 of |L| in 1000 steps, full inertia).
-        let mut omega1 = b.inertia_inv * big_pi;
-        omega1 += b.inertia_inv * (big_pi - b.inertia * omega1);
+        let omega1 = omega_from_pi(b, &big_pi);
         out.vel = Vector6::new(v.x, v.y, v.z, omega1.x, omega1.y, omega1.z);
 
-        let finite = out.vel.iter().all(|c| c.is_finite())
-            && q1.coords.iter().all(|c| c.is_finite())
-            && x.iter().all(|c| c.is_finite());
-        if !finite {
+        if !is_finite_state(&out) {
             self.own.clear();
             return Err(Failure::new(
                 FailureKind::NonFinite,
