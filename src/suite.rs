@@ -7,7 +7,7 @@
 //! Records are sorted in a fixed order so that the summary does not depend on `--jobs`.
 use rayon::prelude::*;
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use crate::integrate::MethodInfo;
@@ -267,7 +267,7 @@ pub fn run_catalogue(
                 let plan = &plans_t[job.plan];
                 let d = run_job(plan, job, refs[job.plan].as_ref(), opts.repeats);
                 let n = counter.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-                if opts.progress && (n % 50 == 0 || n == total) {
+                if opts.progress && (n % (total / 20).max(1) == 0 || n == total) {
                     eprintln!("  {n}/{total} runs");
                 }
                 d
@@ -311,8 +311,10 @@ fn record_key(r: &Record) -> (String, String, usize, usize, usize, u64, u64) {
         order_key(&r.param, registry::PARAMS),
         order_key(&r.integrator, registry::INTEGRATORS),
         order_key(&r.formulation, registry::FORMULATIONS),
-        r.dt.map(|x| (-x).to_bits() ^ (1 << 63)).unwrap_or(0),
-        r.tol.map(|x| (-x).to_bits() ^ (1 << 63)).unwrap_or(0),
+        // Coarse steps (loose tolerances) first: the finest ladder point of a variant is its
+        // last record (the table shows it).
+        r.dt.map(|x| u64::MAX - x.to_bits()).unwrap_or(0),
+        r.tol.map(|x| u64::MAX - x.to_bits()).unwrap_or(0),
     )
 }
 
@@ -524,9 +526,4 @@ pub fn print_table(
         }
     }
     Ok(())
-}
-
-/// Where the series files of a summary live.
-pub fn series_dir(out: &Path) -> PathBuf {
-    out.join("series")
 }
