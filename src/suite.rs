@@ -267,7 +267,7 @@ pub fn run_catalogue(
                 let plan = &plans_t[job.plan];
                 let d = run_job(plan, job, refs[job.plan].as_ref(), opts.repeats);
                 let n = counter.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-                if opts.progress && (n % (total / 20).max(1) == 0 || n == total) {
+                if opts.progress && (n.is_multiple_of((total / 20).max(1)) || n == total) {
                     eprintln!("  {n}/{total} runs");
                 }
                 d
