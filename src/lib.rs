@@ -30,6 +30,7 @@
 pub mod baseline;
 pub mod case;
 pub mod cli;
+pub mod gate;
 pub mod integrate;
 pub mod math;
 pub mod metrics;
