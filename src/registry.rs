@@ -32,6 +32,9 @@ pub struct Setup {
     pub initial: Observation,
     pub grid: Grid,
     pub limits: Limits,
+    /// Observe at the output times (false: the timing pass, which keeps only the final state;
+    /// adaptive methods take the same steps either way, as their output is interpolated).
+    pub observe: bool,
 }
 
 /// A monomorphised run: fixed step (`dt`) or tolerance (`tol`).
@@ -140,7 +143,7 @@ macro_rules! fixed {
                 let sys = RigidSystem::<$chart, $form>::new(setup.body.clone());
                 let x0 = sys.state_from(&setup.initial);
                 let mut m = $ctor;
-                run_fixed(&sys, &mut m, x0, dt, &setup.grid, &setup.limits)
+                run_fixed(&sys, &mut m, x0, dt, &setup.grid, &setup.limits, setup.observe)
             },
         }
     };
@@ -159,7 +162,7 @@ macro_rules! adaptive {
                 let sys = RigidSystem::<$chart, $form>::new(setup.body.clone());
                 let x0 = sys.state_from(&setup.initial);
                 let mut m = AdaptiveRk::$ctor(tol);
-                run_adaptive(&sys, &mut m, x0, &setup.grid, &setup.limits)
+                run_adaptive(&sys, &mut m, x0, &setup.grid, &setup.limits, setup.observe)
             },
         }
     };

@@ -122,6 +122,7 @@ pub fn run_fixed<S: Observable, M: FixedStep<S>>(
     h_nominal: f64,
     grid: &Grid,
     limits: &Limits,
+    observe: bool,
 ) -> Result<RunOutput, String> {
     let n_total = divides(grid.t_end, h_nominal)
         .ok_or_else(|| format!("step {h_nominal} does not divide t_end = {}", grid.t_end))?;
@@ -172,7 +173,9 @@ pub fn run_fixed<S: Observable, M: FixedStep<S>>(
                 out.conditioning_min = c;
             }
         }
-        out.samples.push(sample(sys, k as f64 * h, &x));
+        if observe || k == n_total {
+            out.samples.push(sample(sys, k as f64 * h, &x));
+        }
     }
     Ok(out)
 }
@@ -244,8 +247,13 @@ pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
     x0: S::State,
     grid: &Grid,
     limits: &Limits,
+    observe: bool,
 ) -> Result<RunOutput, String> {
-    let (dt_out, n_out, stride) = output_grid(grid, None)?;
+    let (dt_out, n_out, stride) = if observe {
+        output_grid(grid, None)?
+    } else {
+        (grid.t_end, 1, 1)
+    };
     let w = Watched::new(sys.clone());
     let mut out = RunOutput {
         samples: Vec::with_capacity(n_out as usize + 1),

@@ -2,8 +2,10 @@
 //! registered variants x ladder points into jobs, run them in parallel, score them against the
 //! stored references, fit observed orders, and write `summary.json` with the series files.
 //!
-//! Timing (design.md): a run's wall time is the min and median of 3 repeats when one run takes
-//! under 1 s, else the single run; the repeats re-run the identical deterministic computation.
+//! Timing (design.md, issue 3): results come from a parallel pass (`--jobs`) that observes and
+//! scores; wall times from a second, single-threaded pass that re-runs each variant without
+//! observation: the min and median of 3 repeats when one run takes under 1 s, else the single
+//! run. The computation is deterministic, so the repeats re-run the identical work.
 //! Records are sorted in a fixed order so that the summary does not depend on `--jobs`.
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -14,7 +16,6 @@ use crate::integrate::MethodInfo;
 use crate::metrics::order;
 use crate::reference::{self, Loaded};
 use crate::registry::{self, Setup, Variant};
-use crate::run::RunOutput;
 use crate::score::{self, ScoreContext};
 use crate::summary::{self, Env, FitRecord, Record, Status, Summary, Wall};
 
@@ -105,7 +106,8 @@ pub struct RunOptions {
     pub references: PathBuf,
     /// Print progress lines to stderr.
     pub progress: bool,
-    /// Timing repeats for runs under 1 s (3 in the suite; 1 where only results matter).
+    /// Timing repeats for runs under 1 s in the single-threaded timing pass (3 in the suite;
+    /// 0 skips the timing pass, where only results matter: `wall_s` is then null).
     pub repeats: usize,
 }
 
@@ -120,30 +122,75 @@ struct Done {
     series: Option<(String, summary::Series)>,
 }
 
-/// Runs one variant at one ladder value and times it.
-pub fn timed_run(
-    v: &Variant,
-    setup: &Setup,
-    value: f64,
-    repeats: usize,
-) -> (Result<RunOutput, String>, Wall) {
-    let t0 = Instant::now();
-    let first = (v.run)(setup, value);
-    let w0 = t0.elapsed().as_secs_f64();
-    let mut times = vec![w0];
-    if w0 < 1.0 && first.is_ok() {
-        for _ in 1..repeats.max(1) {
-            let t = Instant::now();
-            let _ = std::hint::black_box((v.run)(setup, value));
-            times.push(t.elapsed().as_secs_f64());
+/// Times one variant at one ladder value, without observation (`setup.observe` false):
+/// `repeats` runs when one takes under 1 s, else one; min and median. None if it cannot run.
+pub fn time_run(v: &Variant, setup: &Setup, value: f64, repeats: usize) -> Option<Wall> {
+    let mut times = Vec::with_capacity(repeats.max(1));
+    for k in 0..repeats.max(1) {
+        let t = Instant::now();
+        let r = std::hint::black_box((v.run)(setup, value));
+        times.push(t.elapsed().as_secs_f64());
+        if r.is_err() {
+            return None;
+        }
+        if k == 0 && times[0] >= 1.0 {
+            break;
         }
     }
     times.sort_by(f64::total_cmp);
-    let wall = Wall {
+    Some(Wall {
         min: times[0],
         median: times[times.len() / 2],
-    };
-    (first, wall)
+    })
+}
+
+/// Progress of a pass: a bar on a terminal, plain lines every 5 % otherwise.
+struct Progress {
+    bar: Option<indicatif::ProgressBar>,
+    total: usize,
+    done: std::sync::atomic::AtomicUsize,
+    label: &'static str,
+    enabled: bool,
+}
+
+impl Progress {
+    fn new(total: usize, label: &'static str, enabled: bool) -> Self {
+        use std::io::IsTerminal;
+        let bar = (enabled && std::io::stderr().is_terminal()).then(|| {
+            let b = indicatif::ProgressBar::new(total as u64);
+            b.set_message(label);
+            if let Ok(style) = indicatif::ProgressStyle::with_template(
+                "  {msg:<8} [{bar:40}] {pos}/{len} ({elapsed}, eta {eta})",
+            ) {
+                b.set_style(style.progress_chars("=> "));
+            }
+            b
+        });
+        Progress {
+            bar,
+            total,
+            done: std::sync::atomic::AtomicUsize::new(0),
+            label,
+            enabled,
+        }
+    }
+    fn tick(&self) {
+        let n = self.done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        match &self.bar {
+            Some(b) => b.inc(1),
+            None if self.enabled
+                && (n.is_multiple_of((self.total / 20).max(1)) || n == self.total) =>
+            {
+                eprintln!("  {} {n}/{} runs", self.label, self.total);
+            }
+            None => {}
+        }
+    }
+    fn finish(&self) {
+        if let Some(b) = &self.bar {
+            b.finish_and_clear();
+        }
+    }
 }
 
 fn base_record(plan: &ScenePlan, param: &str, integrator: &str, formulation: &str) -> Record {
@@ -246,7 +293,7 @@ pub fn run_catalogue(
         }
     }
     let total = jobs.len();
-    let counter = std::sync::atomic::AtomicUsize::new(0);
+    let progress = Progress::new(total, "results", opts.progress);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.jobs.max(1))
         .build()
@@ -265,15 +312,27 @@ pub fn run_catalogue(
         jobs.par_iter()
             .map(|job| {
                 let plan = &plans_t[job.plan];
-                let d = run_job(plan, job, refs[job.plan].as_ref(), opts.repeats);
-                let n = counter.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-                if opts.progress && (n.is_multiple_of((total / 20).max(1)) || n == total) {
-                    eprintln!("  {n}/{total} runs");
-                }
+                let d = run_job(plan, job, refs[job.plan].as_ref());
+                progress.tick();
                 d
             })
             .collect()
     });
+    progress.finish();
+    // The timing pass: single-threaded, after the parallel pass, runs without observation.
+    let mut done = done;
+    if opts.repeats > 0 {
+        let timing = Progress::new(total, "timing", opts.progress);
+        for (job, d) in jobs.iter().zip(done.iter_mut()) {
+            if d.series.is_some() {
+                let mut setup = plans_t[job.plan].setup.clone();
+                setup.observe = false;
+                d.record.wall_s = time_run(job.variant, &setup, job.value, opts.repeats);
+            }
+            timing.tick();
+        }
+        timing.finish();
+    }
     let series_root = opts.out.join("series");
     for d in done {
         if let Some((rel, series)) = &d.series {
@@ -318,7 +377,7 @@ fn record_key(r: &Record) -> (String, String, usize, usize, usize, u64, u64) {
     )
 }
 
-fn run_job(plan: &ScenePlan, job: &Job, reference: Option<&Loaded>, repeats: usize) -> Done {
+fn run_job(plan: &ScenePlan, job: &Job, reference: Option<&Loaded>) -> Done {
     let v = job.variant;
     let mut rec = base_record(plan, v.param, v.integrator, v.formulation);
     if v.info.adaptive {
@@ -327,8 +386,7 @@ fn run_job(plan: &ScenePlan, job: &Job, reference: Option<&Loaded>, repeats: usi
         rec.dt = Some(job.value);
     }
     rec.reference_sha256 = reference.map(|l| l.file_sha256.clone());
-    let (res, wall) = timed_run(v, &plan.setup, job.value, repeats);
-    let out = match res {
+    let out = match (v.run)(&plan.setup, job.value) {
         Ok(o) => o,
         Err(msg) => {
             rec.status = Status::Failed;
@@ -343,7 +401,6 @@ fn run_job(plan: &ScenePlan, job: &Job, reference: Option<&Loaded>, repeats: usi
             };
         }
     };
-    rec.wall_s = Some(wall);
     rec.stats = out.stats;
     rec.status = if out.failure.is_some() {
         Status::Failed

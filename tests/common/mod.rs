@@ -44,7 +44,7 @@ pub fn run(
         t_end,
         references: default_references(),
         progress: false,
-        repeats: 1,
+        repeats: 0,
     };
     let s = suite::run_catalogue(&plans(case_name, scenes), &filter, &opts).unwrap();
     let _ = std::fs::remove_dir_all(&out);
