@@ -1,5 +1,5 @@
-//! ns/step of every registered variant on `nine_spring/large` (1 s of motion), next to a
-//! hand-written fixed-size RK4 loop of the same model (`mbdbench::baseline`). Criterion's
+//! ns/step of every registered variant, per case, next to a hand-written fixed-size RK4 loop
+//! of the nine-spring model (`mbdbench::baseline`). Criterion's
 //! throughput is set to the run's step count, so "elem/s" reads as steps per second and the
 //! time per element as ns/step. After the benches, a table of ns/step and the ratio of
 //! `quat/rk4/body` to the hand loop is printed (target: at most 1.5x).
@@ -52,28 +52,57 @@ fn baseline_run(setup: &Setup, n: usize) -> baseline::Y {
     y
 }
 
+/// ns/step of every registered variant on the first scene of every case, over 1000 steps of
+/// the variant's coarsest ladder step (adaptive: tolerance 1e-8, per accepted step).
 fn bench_steps(c: &mut Criterion) {
     let setup = setup();
-    let mut g = c.benchmark_group("step/nine_spring");
-    g.sample_size(10);
     let n = (T_END / 1e-3).round() as usize;
+    let mut g = c.benchmark_group("step/baseline");
+    g.sample_size(10);
     g.throughput(Throughput::Elements(n as u64));
-    g.bench_function("hand_written_rk4_quat", |b| {
+    g.bench_function("hand_written_rk4_quat_nine_spring", |b| {
         b.iter(|| black_box(baseline_run(black_box(&setup), n)))
     });
-    for v in registry::variants() {
-        let val = value(v);
-        let steps = match (v.run)(&setup, val) {
-            Ok(o) => o.stats.steps.max(1),
-            Err(_) => continue,
-        };
-        g.throughput(Throughput::Elements(steps));
-        let id = format!("{}/{}/{}", v.param, v.integrator, v.formulation);
-        g.bench_with_input(BenchmarkId::from_parameter(id), &val, |b, &val| {
-            b.iter(|| black_box((v.run)(black_box(&setup), val)))
-        });
-    }
     g.finish();
+    let cases = case::embedded().expect("embedded cases load");
+    for k in &cases {
+        let scene = &k.scenes[0];
+        let p = plan::scene_plan(k, scene).expect("plan");
+        let mut g = c.benchmark_group(format!("step/{}", k.name));
+        g.sample_size(10)
+            .warm_up_time(std::time::Duration::from_millis(200))
+            .measurement_time(std::time::Duration::from_millis(500));
+        for v in registry::variants() {
+            if registry::scene_na_reason(v, &p.setup.body).is_some() {
+                continue;
+            }
+            let (val, t_end) = if v.info.adaptive {
+                (1e-8, p.setup.grid.score_every * 10.0)
+            } else {
+                match p.ladders.for_method(&v.info).first() {
+                    Some(&h) => (h, h * 1000.0),
+                    None => continue,
+                }
+            };
+            let mut s = p.setup.clone();
+            s.observe = false;
+            s.grid = Grid {
+                t_end,
+                sample_every: t_end,
+                score_every: t_end,
+            };
+            let steps = match (v.run)(&s, val) {
+                Ok(o) if o.failure.is_none() => o.stats.steps.max(1),
+                _ => continue,
+            };
+            g.throughput(Throughput::Elements(steps));
+            let id = format!("{}/{}/{}", v.param, v.integrator, v.formulation);
+            g.bench_with_input(BenchmarkId::from_parameter(id), &val, |b, &val| {
+                b.iter(|| black_box((v.run)(black_box(&s), val)))
+            });
+        }
+        g.finish();
+    }
 }
 
 /// Median ns/step over a few repeats (for the printed table).
