@@ -1,0 +1,800 @@
+//! The gate (design.md, "Command line": `mbdbench gate`): every case's `[[gates]]` threshold
+//! evaluated against a summary (and the `stability.json` beside it), plus the comparison with
+//! an earlier summary (`regression`), printed as a table with an exit code (`table`). The
+//! input files are read by `load`, the gates checked against what exists by `validate`; this
+//! file expands and judges them.
+//!
+//! A gate names a metric, a bound (`max`: the value must be `<=` it; `min`: `>=`) and a
+//! `where` whose lists select scenes, parameterizations, integrators, formulations and ladder
+//! points (`dt` for fixed-step methods, `tol` for adaptive ones; an absent key means any).
+//! The `where` is expanded over the case's scenes x the registered variants that apply to the
+//! scene (`registry::scene_na_reason`) x the variant's ladder of the tier being gated (the
+//! quick ladder with `--quick`, the full ladder otherwise). Every expanded point must have a
+//! record, searched in the summary and then in the stability summary. A point fails when it has
+//! no record, when the record is stale (its `inputs_sha256` is not the case's current physics
+//! hash, or its `reference_sha256` is not the SHA-256 of the current, loadable reference file),
+//! when the run is `n/a` or ended in a typed failure, when the metric is null or absent, or when
+//! the value crosses the bound. Wall time is never gated; deterministic work counts
+//! (`WORK_METRICS`, read from the record's `stats`) may be.
+//!
+//! Unusable input is a `GateError` (exit 2), never a failing row: a summary that cannot be read
+//! or parsed, an unknown metric name, a `where` value that names no registered variant or no
+//! ladder point, a `where` that expands to nothing in the tier being gated, a gate whose
+//! `baseline x margin` is not its bound (relative `BOUND_REL_TOL`), an unreadable baseline.
+//! Validation of names, values and bounds covers every gate; the expansion check covers the
+//! gates of the tier being evaluated.
+//!
+//! Limits: a `quick = true` gate is also evaluated by the full gate, so it must name a point
+//! present in both ladders (else the full gate reports its `where` as matching nothing).
+//! Stability records are matched by ladder point like the summary's; a study whose runs lie
+//! off the ladders needs its own expansion when its metrics are gated.
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::case::{self, Bound, Case, Gate};
+use crate::metrics;
+use crate::plan;
+use crate::reference;
+use crate::registry::{self, Variant};
+use crate::suite::ScenePlan;
+use crate::summary::{Record, Status, Summary};
+
+pub mod load;
+pub mod regression;
+pub mod table;
+pub mod validate;
+
+#[cfg(test)]
+mod fixture;
+
+pub use load::{load_summary, stability_beside};
+pub use regression::{DEFAULT_FACTOR, compare_baseline, is_baseline_row, update_baseline};
+pub use table::{exit_code, print_table};
+pub use validate::known_metrics;
+use validate::{check_threshold, check_where_values, describe, keep};
+
+/// Outcome of one gate row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    Pass,
+    Fail,
+}
+
+/// One evaluated row: a gated (or baseline-compared) record and metric.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GateRow {
+    pub case: String,
+    pub scene: String,
+    pub param: String,
+    pub integrator: String,
+    pub formulation: String,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub dt: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub tol: Option<f64>,
+    /// The metric (or `rhs_evals`, `newton_iters` for baseline rows).
+    pub metric: String,
+    /// The value found (None: no record, or a null metric).
+    pub value: Option<f64>,
+    /// The threshold as written, e.g. `<= 3.0e-9` or `<= 3 x baseline 1.2e-8`.
+    pub threshold: String,
+    pub verdict: Verdict,
+    /// Why it failed (stale reference, no record, null metric, regression ...), or empty.
+    pub note: String,
+}
+
+/// The deterministic work counters of a record (`stats`) a gate may name.
+pub const WORK_METRICS: &[&str] = &[
+    "steps",
+    "rhs_evals",
+    "newton_iters",
+    "rejected",
+    "normalizations",
+];
+
+/// The metric-name families a gate may name besides the names found in the records; a new
+/// family (the stability study's) is one more entry.
+pub const KNOWN_METRIC_LISTS: &[&[&str]] = &[metrics::RIGID_METRICS, WORK_METRICS];
+
+/// Relative slack between a gate's bound and its `baseline x margin`.
+pub const BOUND_REL_TOL: f64 = 1e-9;
+
+/// Relative slack when a `where` step or tolerance is matched with a ladder value or a record.
+const VALUE_REL_TOL: f64 = 1e-12;
+
+/// Options of `mbdbench gate`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GateOptions {
+    /// Evaluate only `quick = true` gates, on the quick ladders.
+    pub quick: bool,
+    /// An earlier summary to compare with (`--baseline FILE`).
+    pub baseline: Option<PathBuf>,
+    /// How much worse an error metric may become before it is a regression (`--factor`).
+    pub factor: f64,
+    /// The references folder (`references/`).
+    pub references: PathBuf,
+}
+
+impl GateOptions {
+    /// The full gate, no baseline, the default factor.
+    pub fn new(references: PathBuf) -> Self {
+        GateOptions {
+            quick: false,
+            baseline: None,
+            factor: DEFAULT_FACTOR,
+            references,
+        }
+    }
+}
+
+/// Input the gate cannot use (exit 2). Every message names the file and the key or value.
+#[derive(Debug, thiserror::Error)]
+pub enum GateError {
+    /// A summary, stability summary or baseline that is missing, corrupt or truncated.
+    #[error("{path}: unusable {what}: {message}")]
+    Unreadable {
+        what: &'static str,
+        path: String,
+        message: String,
+    },
+    /// A gate names a metric no case reports.
+    #[error("{file}: gates[{index}].metric: unknown metric \"{metric}\" (known: {known})")]
+    UnknownMetric {
+        file: String,
+        index: usize,
+        metric: String,
+        known: String,
+    },
+    /// A `where` (or one of its values) that selects no registered variant or ladder point.
+    #[error("{file}: gates[{index}].{key}: {message}")]
+    Where {
+        file: String,
+        index: usize,
+        key: String,
+        message: String,
+    },
+    /// A bound inconsistent with its `baseline` and `margin`.
+    #[error("{file}: gates[{index}].{key}: {message}")]
+    Threshold {
+        file: String,
+        index: usize,
+        key: String,
+        message: String,
+    },
+    /// A scene that cannot be planned.
+    #[error(transparent)]
+    Case(#[from] case::CaseError),
+    /// `--update-baseline` could not write.
+    #[error("{path}: cannot write the baseline: {message}")]
+    Write { path: String, message: String },
+    /// The baseline has no run in common with the summary (another tier, other cases).
+    #[error(
+        "{path}: the baseline shares no run (case, scene, variant, dt|tol) with the summary: nothing to compare (another tier?)"
+    )]
+    Disjoint { path: String },
+}
+
+pub(super) fn all_records<'a>(
+    summary: &'a Summary,
+    stability: Option<&'a Summary>,
+) -> impl Iterator<Item = &'a Record> {
+    summary
+        .records
+        .iter()
+        .chain(stability.into_iter().flat_map(|s| s.records.iter()))
+}
+
+/// Whether two steps or tolerances are the same ladder value.
+pub(crate) fn same_value(a: f64, b: f64) -> bool {
+    (a - b).abs() <= VALUE_REL_TOL * a.abs().max(b.abs())
+}
+
+/// A record's value of `metric`: `None` absent, `Some(None)` null. Work counters come from
+/// `stats`.
+pub fn metric_value(r: &Record, metric: &str) -> Option<Option<f64>> {
+    if let Some(v) = r.metrics.get(metric) {
+        return Some(*v);
+    }
+    let s = &r.stats;
+    let count = match metric {
+        "steps" => s.steps,
+        "rhs_evals" => s.rhs_evals,
+        "newton_iters" => s.newton_iters,
+        "rejected" => s.rejected,
+        "normalizations" => s.normalizations,
+        _ => return None,
+    };
+    Some(Some(count as f64))
+}
+
+/// `<= t` or `>= t`.
+fn threshold_text(b: Bound) -> String {
+    match b {
+        Bound::Max(t) => format!("<= {t:e}"),
+        Bound::Min(t) => format!(">= {t:e}"),
+    }
+}
+
+/// A failure's one-line description.
+pub(crate) fn failure_text(r: &Record) -> String {
+    match &r.failure {
+        Some(f) => {
+            let kind = serde_json::to_value(f.kind)
+                .ok()
+                .and_then(|v| v.as_str().map(str::to_string))
+                .unwrap_or_else(|| format!("{:?}", f.kind));
+            format!("run failed: {kind} at t = {}: {}", f.t, f.message)
+        }
+        None => "run failed".into(),
+    }
+}
+
+fn short(hash: &str) -> &str {
+    &hash[..hash.len().min(12)]
+}
+
+// ---------------------------------------------------------------------------------------
+// ---------------------------------------------------------------------------------------
+// Expansion and evaluation
+
+/// One gated run: a scene, a registered variant and a ladder value.
+struct Point<'p> {
+    plan: &'p ScenePlan,
+    variant: &'static Variant,
+    value: f64,
+}
+
+fn expand<'p>(
+    c: &Case,
+    index: usize,
+    g: &Gate,
+    plans: &'p [ScenePlan],
+    quick: bool,
+) -> Result<Vec<Point<'p>>, GateError> {
+    let f = &g.filter;
+    let mut points = vec![];
+    let mut matching = 0usize;
+    let mut ladders: BTreeSet<String> = BTreeSet::new();
+    let mut na: BTreeSet<String> = BTreeSet::new();
+    for plan in plans.iter().filter(|p| keep(&f.scene, &p.scene)) {
+        for v in registry::variants() {
+            let adaptive = v.info.adaptive;
+            if !(keep(&f.param, v.param)
+                && keep(&f.integrator, v.integrator)
+                && keep(&f.formulation, v.formulation))
+                || (adaptive && !f.dt.is_empty())
+                || (!adaptive && !f.tol.is_empty())
+            {
+                continue;
+            }
+            if let Some(why) = registry::scene_na_reason(v, &plan.setup.body) {
+                na.insert(format!("{v:?} is n/a on {}: {why}", plan.scene));
+                continue;
+            }
+            matching += 1;
+            let ladder = if quick { &plan.quick } else { &plan.ladders }.for_method(&v.info);
+            let wanted = if adaptive { &f.tol } else { &f.dt };
+            ladders.extend(ladder.iter().map(|x| format!("{x:e}")));
+            for &x in ladder {
+                if wanted.is_empty() || wanted.iter().any(|w| same_value(*w, x)) {
+                    points.push(Point {
+                        plan,
+                        variant: v,
+                        value: x,
+                    });
+                }
+            }
+        }
+    }
+    if points.is_empty() {
+        let tier = if quick { "quick" } else { "full" };
+        let message = if matching == 0 {
+            let mut m = format!("{} matches no registered variant", describe(f));
+            if !na.is_empty() {
+                m.push_str(&format!(
+                    " that applies ({})",
+                    na.into_iter().collect::<Vec<_>>().join("; ")
+                ));
+            }
+            m
+        } else {
+            format!(
+                "{} matches {matching} registered variant(s) but no point of their {tier} \
+                 ladders (values there: {})",
+                describe(f),
+                if ladders.is_empty() {
+                    "none".into()
+                } else {
+                    ladders.into_iter().collect::<Vec<_>>().join(", ")
+                }
+            )
+        };
+        return Err(GateError::Where {
+            file: c.file.clone(),
+            index,
+            key: "where".into(),
+            message,
+        });
+    }
+    Ok(points)
+}
+
+/// Records of the summary, then of the stability summary, by (case, scene, variant).
+struct RecordIndex<'a> {
+    map: BTreeMap<(&'a str, &'a str, &'a str, &'a str, &'a str), Vec<&'a Record>>,
+}
+
+impl<'a> RecordIndex<'a> {
+    fn new(summary: &'a Summary, stability: Option<&'a Summary>) -> Self {
+        let mut map: BTreeMap<_, Vec<&Record>> = BTreeMap::new();
+        for r in all_records(summary, stability) {
+            map.entry((
+                r.case.as_str(),
+                r.scene.as_str(),
+                r.param.as_str(),
+                r.integrator.as_str(),
+                r.formulation.as_str(),
+            ))
+            .or_default()
+            .push(r);
+        }
+        RecordIndex { map }
+    }
+
+    /// The record of a point; among several, the first that carries `metric`.
+    fn find(&self, case: &str, p: &Point, metric: &str) -> Option<&'a Record> {
+        let v = p.variant;
+        let list = self.map.get(&(
+            case,
+            p.plan.scene.as_str(),
+            v.param,
+            v.integrator,
+            v.formulation,
+        ))?;
+        let at = |r: &&&Record| {
+            let x = if v.info.adaptive { r.tol } else { r.dt };
+            x.is_some_and(|x| same_value(x, p.value))
+        };
+        let mut candidates = list.iter().filter(at);
+        let first = candidates.clone().next().copied();
+        candidates
+            .find(|r| r.metrics.contains_key(metric))
+            .copied()
+            .or(first)
+    }
+}
+
+/// The SHA-256 of each scene's current reference file, or why it cannot be used.
+struct ReferenceHashes<'r> {
+    root: &'r Path,
+    cache: BTreeMap<(String, String), Result<String, String>>,
+}
+
+impl ReferenceHashes<'_> {
+    fn get(&mut self, plan: &ScenePlan) -> &Result<String, String> {
+        self.cache
+            .entry((plan.case.clone(), plan.scene.clone()))
+            .or_insert_with(|| {
+                reference::load(self.root, &plan.case, &plan.scene, &plan.inputs_sha256)
+                    .map(|l| l.file_sha256)
+                    .map_err(|e| e.to_string())
+            })
+    }
+}
+
+/// Evaluates the gates of `cases` (only `quick = true` ones with `opts.quick`) against the
+/// records of `summary` and `stability`, then, with `opts.baseline`, compares `summary` with
+/// the baseline. Rows come in case, gate, scene, registry and ladder order, baseline rows
+/// last.
+pub fn evaluate(
+    cases: &[Case],
+    summary: &Summary,
+    stability: Option<&Summary>,
+    opts: &GateOptions,
+) -> Result<Vec<GateRow>, GateError> {
+    let known = known_metrics(summary, stability);
+    for c in cases {
+        for (i, g) in c.gates.iter().enumerate() {
+            if !known.contains(&g.metric) {
+                return Err(GateError::UnknownMetric {
+                    file: c.file.clone(),
+                    index: i,
+                    metric: g.metric.clone(),
+                    known: known.iter().cloned().collect::<Vec<_>>().join(", "),
+                });
+            }
+            check_threshold(c, i, g)?;
+            check_where_values(c, i, g)?;
+        }
+    }
+    let index = RecordIndex::new(summary, stability);
+    let mut refs = ReferenceHashes {
+        root: &opts.references,
+        cache: BTreeMap::new(),
+    };
+    let mut rows = vec![];
+    for c in cases {
+        let gated: Vec<(usize, &Gate)> = c
+            .gates
+            .iter()
+            .enumerate()
+            .filter(|(_, g)| g.quick || !opts.quick)
+            .collect();
+        if gated.is_empty() {
+            continue;
+        }
+        let plans = c
+            .scenes
+            .iter()
+            .map(|s| plan::scene_plan(c, s))
+            .collect::<Result<Vec<_>, _>>()?;
+        for (i, g) in gated {
+            for p in expand(c, i, g, &plans, opts.quick)? {
+                let rec = index.find(&c.name, &p, &g.metric);
+                rows.push(judge(g, &p, rec, &mut refs, stability.is_some()));
+            }
+        }
+    }
+    if let Some(path) = &opts.baseline {
+        let base = regression::load_baseline(path)?;
+        rows.extend(compare_baseline(
+            cases,
+            summary,
+            &base,
+            path,
+            &opts.references,
+            opts.factor,
+        )?);
+    }
+    Ok(rows)
+}
+
+/// The row of one gated point.
+fn judge(
+    g: &Gate,
+    p: &Point,
+    rec: Option<&Record>,
+    refs: &mut ReferenceHashes,
+    with_stability: bool,
+) -> GateRow {
+    let v = p.variant;
+    let mut row = GateRow {
+        case: p.plan.case.clone(),
+        scene: p.plan.scene.clone(),
+        param: v.param.into(),
+        integrator: v.integrator.into(),
+        formulation: v.formulation.into(),
+        dt: (!v.info.adaptive).then_some(p.value),
+        tol: v.info.adaptive.then_some(p.value),
+        metric: g.metric.clone(),
+        value: None,
+        threshold: threshold_text(g.bound),
+        verdict: Verdict::Fail,
+        note: String::new(),
+    };
+    let Some(r) = rec else {
+        row.note = format!(
+            "no record in the summary{}",
+            if with_stability {
+                " or stability.json"
+            } else {
+                ""
+            }
+        );
+        return row;
+    };
+    let value = metric_value(r, &g.metric);
+    row.value = value.flatten();
+    if r.inputs_sha256 != p.plan.inputs_sha256 {
+        row.note = format!(
+            "stale: the record's inputs_sha256 {} is not the case's current {} (rerun)",
+            short(&r.inputs_sha256),
+            short(&p.plan.inputs_sha256)
+        );
+        return row;
+    }
+    match refs.get(p.plan) {
+        Err(e) => {
+            row.note = format!("stale: {e}");
+            return row;
+        }
+        Ok(sha) if r.reference_sha256.as_deref() != Some(sha.as_str()) => {
+            row.note = format!(
+                "stale: the record's reference_sha256 {} is not the current reference file's {} \
+                 (rerun)",
+                r.reference_sha256.as_deref().map_or("null", short),
+                short(sha)
+            );
+            return row;
+        }
+        Ok(_) => {}
+    }
+    match r.status {
+        Status::NotApplicable => {
+            row.note = format!("n/a: {}", r.reason.as_deref().unwrap_or("no reason given"));
+            return row;
+        }
+        Status::Failed => {
+            row.note = failure_text(r);
+            return row;
+        }
+        Status::Ok => {}
+    }
+    let x = match value {
+        None => {
+            row.note = "metric absent from the record (it does not apply to this case)".into();
+            return row;
+        }
+        Some(None) => {
+            row.note = format!(
+                "null: {}",
+                r.metric_reasons
+                    .get(&g.metric)
+                    .map_or("no reason given", String::as_str)
+            );
+            return row;
+        }
+        Some(Some(x)) => x,
+    };
+    let pass = match g.bound {
+        Bound::Max(t) => x <= t,
+        Bound::Min(t) => x >= t,
+    };
+    if pass {
+        row.verdict = Verdict::Pass;
+    } else {
+        row.note = match g.bound {
+            Bound::Max(t) if t > 0.0 => format!("{:.3}x the maximum", x / t),
+            Bound::Max(_) => "above the maximum".into(),
+            Bound::Min(_) => "below the minimum".into(),
+        };
+    }
+    row
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fixture::{self, nine, opts, passing};
+    use super::*;
+
+    fn table(rows: &[GateRow]) -> String {
+        let mut out = vec![];
+        print_table(rows, &mut out).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
+    fn find<'a>(rows: &'a [GateRow], metric: &str, param: &str) -> &'a GateRow {
+        rows.iter()
+            .find(|r| r.metric == metric && r.param == param)
+            .unwrap()
+    }
+
+    fn rec_mut<'a>(s: &'a mut Summary, integrator: &str, dt: f64) -> &'a mut Record {
+        s.records
+            .iter_mut()
+            .find(|r| r.integrator == integrator && r.dt == Some(dt))
+            .unwrap()
+    }
+
+    /// A summary within every bound passes: one row per expanded point (1 + 1 + 2), exit 0.
+    #[test]
+    fn passing_summary_passes() {
+        let c = nine();
+        let rows = evaluate(std::slice::from_ref(&c), &passing(&c), None, &opts(false)).unwrap();
+        assert_eq!(rows.len(), 4);
+        assert!(rows.iter().all(|r| r.verdict == Verdict::Pass), "{rows:?}");
+        assert_eq!(exit_code(&rows), 0);
+        let t = table(&rows);
+        assert_eq!(t.lines().last(), Some("4 passed, 0 failed"), "{t}");
+        // The conditioning gate is a minimum over two parameterizations, in registry order.
+        let cond: Vec<&str> = rows
+            .iter()
+            .filter(|r| r.metric == "conditioning_min")
+            .map(|r| r.param.as_str())
+            .collect();
+        assert_eq!(cond.len(), 2);
+        assert!(cond.contains(&"so3") && cond.contains(&"quat"));
+        assert_eq!(find(&rows, "conditioning_min", "quat").threshold, ">= 5e-1");
+    }
+
+    /// A gated metric 10x worse than its threshold fails (exit 1) with a row, and a printed
+    /// line, naming case, variant, metric, value and threshold.
+    #[test]
+    fn ten_times_worse_fails() {
+        let c = nine();
+        let mut s = passing(&c);
+        rec_mut(&mut s, "rk4", 1.0e-2)
+            .metrics
+            .insert("rotation_error_max".into(), Some(1.0e-4));
+        let rows = evaluate(std::slice::from_ref(&c), &s, None, &opts(false)).unwrap();
+        assert_eq!(exit_code(&rows), 1);
+        let r = find(&rows, "rotation_error_max", "so3");
+        assert_eq!(r.verdict, Verdict::Fail);
+        assert_eq!((r.value, r.threshold.as_str()), (Some(1.0e-4), "<= 1e-5"));
+        assert!(r.note.contains("10.000x"), "{}", r.note);
+        let t = table(&rows);
+        let line = t.lines().find(|l| l.contains("FAIL")).unwrap();
+        for part in [
+            "nine_spring",
+            "two_angles/so3/rk4/body dt=1e-2",
+            "rotation_error_max",
+            "1.000e-4",
+            "<= 1e-5",
+        ] {
+            assert!(line.contains(part), "{part} not in {line}");
+        }
+        assert_eq!(t.lines().last(), Some("3 passed, 1 failed"));
+        // A value exactly at the maximum passes (the bound is inclusive).
+        rec_mut(&mut s, "rk4", 1.0e-2)
+            .metrics
+            .insert("rotation_error_max".into(), Some(1.0e-5));
+        let rows = evaluate(std::slice::from_ref(&c), &s, None, &opts(false)).unwrap();
+        assert_eq!(exit_code(&rows), 0);
+        // Below a minimum fails too.
+        s.records[3]
+            .metrics
+            .insert("conditioning_min".into(), Some(0.25));
+        let rows = evaluate(&[c], &s, None, &opts(false)).unwrap();
+        let r = find(&rows, "conditioning_min", "quat");
+        assert_eq!(r.verdict, Verdict::Fail);
+        assert!(r.note.contains("below the minimum"));
+    }
+
+    /// A record made from other physics (inputs hash) fails as stale.
+    #[test]
+    fn stale_inputs_hash_fails() {
+        let c = nine();
+        let mut s = passing(&c);
+        rec_mut(&mut s, "rk4", 1.0e-2).inputs_sha256 = "0".repeat(64);
+        let rows = evaluate(&[c], &s, None, &opts(false)).unwrap();
+        let r = find(&rows, "rotation_error_max", "so3");
+        assert_eq!(r.verdict, Verdict::Fail);
+        assert!(
+            r.note
+                .starts_with("stale: the record's inputs_sha256 000000000000")
+        );
+        assert_eq!(exit_code(&rows), 1);
+        assert_eq!(
+            rows.iter().filter(|r| r.verdict == Verdict::Fail).count(),
+            1
+        );
+    }
+
+    /// A record scored against another reference file fails as stale; so does every point
+    /// when the reference file is missing.
+    #[test]
+    fn stale_reference_hash_fails() {
+        let c = nine();
+        let mut s = passing(&c);
+        rec_mut(&mut s, "rk4", 5.0e-3).reference_sha256 = Some("ab".repeat(32));
+        let rows = evaluate(std::slice::from_ref(&c), &s, None, &opts(false)).unwrap();
+        let r = find(&rows, "energy_drift_max", "so3");
+        assert_eq!(r.verdict, Verdict::Fail);
+        assert!(
+            r.note.contains("reference_sha256 abababababab"),
+            "{}",
+            r.note
+        );
+        assert_eq!(exit_code(&rows), 1);
+        // A record without a reference hash (a --t-end run) is stale as well.
+        rec_mut(&mut s, "rk4", 5.0e-3).reference_sha256 = None;
+        let rows = evaluate(std::slice::from_ref(&c), &s, None, &opts(false)).unwrap();
+        assert!(find(&rows, "energy_drift_max", "so3").note.contains("null"));
+        // No reference files at all.
+        let dir = fixture::scratch("noref");
+        let o = GateOptions {
+            references: dir.clone(),
+            ..opts(false)
+        };
+        let rows = evaluate(&[c], &passing(&nine()), None, &o).unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
+        assert_eq!(rows.len(), 4);
+        for r in &rows {
+            assert_eq!(r.verdict, Verdict::Fail);
+            assert!(r.note.contains("stale") && r.note.contains("missing reference"));
+        }
+    }
+
+    /// A gated variant without a record fails ("no record"), as do a failed run, a null
+    /// metric (with its reason) and an absent one.
+    #[test]
+    fn missing_record_and_unusable_values_fail() {
+        let c = nine();
+        let mut s = passing(&c);
+        s.records.retain(|r| r.param != "quat");
+        let rows = evaluate(std::slice::from_ref(&c), &s, None, &opts(false)).unwrap();
+        let r = find(&rows, "conditioning_min", "quat");
+        assert_eq!((r.verdict, r.value), (Verdict::Fail, None));
+        assert_eq!(r.note, "no record in the summary");
+        assert_eq!(exit_code(&rows), 1);
+
+        let mut s = passing(&c);
+        let r = rec_mut(&mut s, "rk4", 1.0e-2);
+        r.metrics.insert("rotation_error_max".into(), None);
+        r.metric_reasons.insert(
+            "rotation_error_max".into(),
+            "the run ended before t_end".into(),
+        );
+        let r = rec_mut(&mut s, "rk4", 5.0e-3);
+        r.status = Status::Failed;
+        r.failure = Some(crate::integrate::Failure::new(
+            crate::integrate::FailureKind::NewtonFailure,
+            2.5,
+            "no convergence in 50 iterations",
+        ));
+        s.records[3].metrics.remove("conditioning_min");
+        let rows = evaluate(&[c], &s, None, &opts(false)).unwrap();
+        assert_eq!(
+            find(&rows, "rotation_error_max", "so3").note,
+            "null: the run ended before t_end"
+        );
+        assert_eq!(
+            find(&rows, "energy_drift_max", "so3").note,
+            "run failed: newton_failure at t = 2.5: no convergence in 50 iterations"
+        );
+        assert!(
+            find(&rows, "conditioning_min", "quat")
+                .note
+                .starts_with("metric absent")
+        );
+        assert_eq!(
+            find(&rows, "conditioning_min", "so3").verdict,
+            Verdict::Pass
+        );
+    }
+
+    /// --quick evaluates only quick gates, on the quick ladder points.
+    #[test]
+    fn quick_evaluates_only_quick_gates() {
+        let c = nine();
+        let rows = evaluate(std::slice::from_ref(&c), &passing(&c), None, &opts(true)).unwrap();
+        assert_eq!(rows.len(), 3);
+        assert!(rows.iter().all(|r| r.metric != "energy_drift_max"));
+        assert!(rows.iter().all(|r| r.verdict == Verdict::Pass));
+        // A failing full-only gate does not affect the quick gate.
+        let mut s = passing(&c);
+        rec_mut(&mut s, "rk4", 5.0e-3)
+            .metrics
+            .insert("energy_drift_max".into(), Some(1.0));
+        assert_eq!(
+            exit_code(&evaluate(std::slice::from_ref(&c), &s, None, &opts(true)).unwrap()),
+            0
+        );
+        assert_eq!(
+            exit_code(&evaluate(&[c], &s, None, &opts(false)).unwrap()),
+            1
+        );
+    }
+
+    /// Records of the stability summary are searched too, and their metric names are known.
+    #[test]
+    fn stability_records_are_searched() {
+        let c = fixture::with_gates(
+            "nine_spring",
+            "[[gates]]\nmetric = \"stable_fraction\"\nmin = 0.9\nwhere = { scene = \"large\", \
+             param = \"so3\", integrator = \"lgvi\", dt = 1.0e-2 }\n",
+        );
+        let s = fixture::summary(vec![]);
+        // Without the stability summary the metric is unknown: bad input.
+        let e = evaluate(std::slice::from_ref(&c), &s, None, &opts(false)).unwrap_err();
+        assert!(matches!(e, GateError::UnknownMetric { .. }), "{e}");
+        let st = fixture::summary(vec![fixture::record(
+            &c,
+            "large",
+            ("so3", "lgvi", "body"),
+            Some(1.0e-2),
+            None,
+            &[("stable_fraction", 0.95)],
+            1000,
+        )]);
+        let rows = evaluate(&[c], &s, Some(&st), &opts(false)).unwrap();
+        assert_eq!(rows.len(), 1);
+        assert_eq!(
+            (rows[0].verdict, rows[0].value),
+            (Verdict::Pass, Some(0.95))
+        );
+    }
+}

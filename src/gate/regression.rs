@@ -1,0 +1,523 @@
+//! The baseline comparison of `mbdbench gate --baseline FILE` and the deliberate rewrite of
+//! the baseline (`--update-baseline`): an earlier summary against the current one, run by run.
+//!
+//! Two runs are the same when case, scene, param, integrator, formulation and `dt | tol` agree
+//! exactly (both summaries come from the same ladder literals). For each pair where both runs
+//! are `ok` it adds one row per compared quantity:
+//! - an error metric (`ERROR_METRICS`) regresses when `new > factor * old`; it is compared
+//!   only where both values lie above `FLOOR_CLAIMS` x the reference's accuracy claim
+//!   (`suite::claim_for`), since below that the error measures the reference, not the run;
+//! - a work count (`WORK_COUNTS`: RHS evaluations, Newton iterations; deterministic) regresses
+//!   when `new > WORK_SLACK * old` (skipped when both are 0).
+//!
+//! A run `ok` in the baseline that now ends in a typed failure is a regression row; runs in
+//! only one of the two are ignored (a new variant, a new ladder point). A scene whose physics
+//! hash differs between the two gives one failing row (the baseline is for other physics: it
+//! must be updated deliberately), as does a scene whose reference cannot be loaded when
+//! errors are to be compared. A baseline without any run in common is unusable input.
+//! Wall time is never compared.
+//!
+//! Baseline rows are recognised by their threshold text, which always says `baseline`
+//! (gate thresholds are `<= x` / `>= x`).
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use super::load::{load_as, load_summary};
+use super::{GateError, GateRow, Verdict, failure_text, metric_value};
+use crate::case::{self, Case};
+use crate::reference::{self, Reference};
+use crate::registry;
+use crate::suite::claim_for;
+use crate::summary::{Record, Status, Summary};
+
+/// The default `--factor`.
+pub const DEFAULT_FACTOR: f64 = 3.0;
+/// Allowed growth of a deterministic work count (5 %).
+pub const WORK_SLACK: f64 = 1.05;
+/// Errors are compared only above this multiple of the reference's accuracy claim.
+pub const FLOOR_CLAIMS: f64 = 100.0;
+/// The error metrics compared with the baseline.
+pub const ERROR_METRICS: [&str; 4] = [
+    "position_error_max",
+    "rotation_error_max",
+    "velocity_error_max",
+    "omega_error_max",
+];
+/// The work counts compared with the baseline.
+pub const WORK_COUNTS: [&str; 2] = ["rhs_evals", "newton_iters"];
+
+/// Whether a row comes from the baseline comparison.
+pub fn is_baseline_row(r: &GateRow) -> bool {
+    r.threshold.contains("baseline")
+}
+
+/// Reads a baseline (a summary); unusable input names the file.
+pub fn load_baseline(path: &Path) -> Result<Summary, GateError> {
+    load_as(path, "baseline")
+}
+
+/// Rewrites the baseline from a summary (validated first), atomically.
+pub fn update_baseline(summary_path: &Path, baseline_path: &Path) -> Result<(), GateError> {
+    let s = load_summary(summary_path)?;
+    let write = |message: String| GateError::Write {
+        path: baseline_path.display().to_string(),
+        message,
+    };
+    let text = serde_json::to_string_pretty(&s).map_err(|e| write(e.to_string()))?;
+    reference::write_atomic(baseline_path, text.as_bytes()).map_err(|e| write(e.to_string()))
+}
+
+/// (case, scene, param, integrator, formulation, dt bits, tol bits).
+type RunKey<'a> = (&'a str, &'a str, &'a str, &'a str, &'a str, u64, u64);
+
+fn run_key(r: &Record) -> RunKey<'_> {
+    (
+        &r.case,
+        &r.scene,
+        &r.param,
+        &r.integrator,
+        &r.formulation,
+        r.dt.map_or(0, f64::to_bits),
+        r.tol.map_or(0, f64::to_bits),
+    )
+}
+
+/// Report order: case, scene, registry order of the variant, then coarse to fine.
+fn order_key(r: &Record) -> (String, String, usize, usize, usize, u64, u64) {
+    let pos = |v: &str, l: &[&str]| l.iter().position(|x| *x == v).unwrap_or(usize::MAX);
+    (
+        r.case.clone(),
+        r.scene.clone(),
+        pos(&r.param, registry::PARAMS),
+        pos(&r.integrator, registry::INTEGRATORS),
+        pos(&r.formulation, registry::FORMULATIONS),
+        r.dt.map_or(0, |x| u64::MAX - x.to_bits()),
+        r.tol.map_or(0, |x| u64::MAX - x.to_bits()),
+    )
+}
+
+fn row(r: &Record, metric: &str, value: Option<f64>, threshold: String) -> GateRow {
+    GateRow {
+        case: r.case.clone(),
+        scene: r.scene.clone(),
+        param: r.param.clone(),
+        integrator: r.integrator.clone(),
+        formulation: r.formulation.clone(),
+        dt: r.dt,
+        tol: r.tol,
+        metric: metric.into(),
+        value,
+        threshold,
+        verdict: Verdict::Pass,
+        note: String::new(),
+    }
+}
+
+/// A failing row about a whole scene.
+fn scene_row(case: &str, scene: &str, metric: &str, threshold: &str, note: String) -> GateRow {
+    GateRow {
+        case: case.into(),
+        scene: scene.into(),
+        param: "*".into(),
+        integrator: "*".into(),
+        formulation: "*".into(),
+        dt: None,
+        tol: None,
+        metric: metric.into(),
+        value: None,
+        threshold: threshold.into(),
+        verdict: Verdict::Fail,
+        note,
+    }
+}
+
+/// Compares `current` with `baseline` (read from `baseline_path`, named in errors). The
+/// accuracy claims come from the references under `references`, loaded with the cases'
+/// current physics hashes.
+pub fn compare_baseline(
+    cases: &[Case],
+    current: &Summary,
+    baseline: &Summary,
+    baseline_path: &Path,
+    references: &Path,
+    factor: f64,
+) -> Result<Vec<GateRow>, GateError> {
+    let base: BTreeMap<RunKey, &Record> = baseline
+        .records
+        .iter()
+        .filter(|r| r.status != Status::NotApplicable)
+        .map(|r| (run_key(r), r))
+        .collect();
+    let mut now: Vec<&Record> = current
+        .records
+        .iter()
+        .filter(|r| r.status != Status::NotApplicable)
+        .collect();
+    now.sort_by_key(|r| order_key(r));
+    let mut claims: BTreeMap<(String, String), Result<Reference, String>> = BTreeMap::new();
+    let mut stale: BTreeMap<(String, String), usize> = BTreeMap::new();
+    let mut common = 0usize;
+    let mut rows = vec![];
+    for r in now {
+        let Some(b) = base.get(&run_key(r)) else {
+            continue;
+        };
+        common += 1;
+        if b.inputs_sha256 != r.inputs_sha256 {
+            *stale.entry((r.case.clone(), r.scene.clone())).or_default() += 1;
+            continue;
+        }
+        if b.status == Status::Ok && r.status == Status::Failed {
+            let mut x = row(r, "status", None, "ok as in the baseline".into());
+            x.verdict = Verdict::Fail;
+            x.note = failure_text(r);
+            rows.push(x);
+            continue;
+        }
+        if b.status != Status::Ok || r.status != Status::Ok {
+            continue;
+        }
+        let pairs: Vec<(&str, f64, f64)> = ERROR_METRICS
+            .iter()
+            .filter_map(|m| {
+                let old = metric_value(b, m).flatten()?;
+                let new = metric_value(r, m).flatten()?;
+                Some((*m, old, new))
+            })
+            .collect();
+        if !pairs.is_empty() {
+            let loaded = claims
+                .entry((r.case.clone(), r.scene.clone()))
+                .or_insert_with(|| load_reference(cases, references, &r.case, &r.scene));
+            if let Ok(reference) = loaded {
+                for (m, old, new) in pairs {
+                    let floor = FLOOR_CLAIMS * claim_for(reference, m);
+                    if !(old > floor && new > floor) {
+                        continue;
+                    }
+                    let mut x = row(r, m, Some(new), format!("<= {factor} x baseline {old:e}"));
+                    if new > factor * old {
+                        x.verdict = Verdict::Fail;
+                        x.note = format!(
+                            "regression: {:.3}x the baseline (floor {floor:.2e})",
+                            new / old
+                        );
+                    }
+                    rows.push(x);
+                }
+            }
+        }
+        for m in WORK_COUNTS {
+            let (Some(Some(old)), Some(Some(new))) = (metric_value(b, m), metric_value(r, m))
+            else {
+                continue;
+            };
+            if old == 0.0 && new == 0.0 {
+                continue;
+            }
+            let mut x = row(r, m, Some(new), format!("<= {WORK_SLACK} x baseline {old}"));
+            if new > WORK_SLACK * old {
+                x.verdict = Verdict::Fail;
+                x.note = if old > 0.0 {
+                    format!("regression: {:+.1} % work", 100.0 * (new / old - 1.0))
+                } else {
+                    "regression: work where the baseline had none".into()
+                };
+            }
+            rows.push(x);
+        }
+    }
+    if common == 0 {
+        return Err(GateError::Disjoint {
+            path: baseline_path.display().to_string(),
+        });
+    }
+    for ((case, scene), n) in stale {
+        rows.push(scene_row(
+            &case,
+            &scene,
+            "inputs_sha256",
+            "same physics as the baseline",
+            format!(
+                "{n} run(s) of this scene were made from other physics than the baseline's: \
+                 update the baseline deliberately (gate --update-baseline)"
+            ),
+        ));
+    }
+    for ((case, scene), loaded) in claims {
+        if let Err(e) = loaded {
+            rows.push(scene_row(
+                &case,
+                &scene,
+                "accuracy_claim",
+                "baseline errors comparable",
+                format!("cannot compare errors with the baseline: {e}"),
+            ));
+        }
+    }
+    Ok(rows)
+}
+
+/// The current reference of a scene (loaded with the case's current physics hash).
+fn load_reference(
+    cases: &[Case],
+    root: &Path,
+    case_name: &str,
+    scene_name: &str,
+) -> Result<Reference, String> {
+    let c = cases
+        .iter()
+        .find(|c| c.name == case_name)
+        .ok_or_else(|| format!("case `{case_name}` is not in the catalogue"))?;
+    let s = c
+        .scene(scene_name)
+        .ok_or_else(|| format!("{}: no scene `{scene_name}`", c.file))?;
+    reference::load(root, case_name, scene_name, &case::inputs_sha256(c, s))
+        .map(|l| l.reference)
+        .map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::fixture::{self, nine, opts, passing};
+    use super::super::{GateOptions, evaluate, exit_code, print_table};
+    use super::*;
+    use crate::integrate::{Failure, FailureKind};
+
+    const BASELINE: &str = "reports/baseline/quick.json";
+
+    fn compare(c: &Case, current: &Summary, baseline: &Summary) -> Vec<GateRow> {
+        compare_baseline(
+            std::slice::from_ref(c),
+            current,
+            baseline,
+            Path::new(BASELINE),
+            &fixture::references(),
+            DEFAULT_FACTOR,
+        )
+        .unwrap()
+    }
+
+    /// The accuracy claim of nine_spring/two_angles for `metric`.
+    fn claim(c: &Case, metric: &str) -> f64 {
+        let r = load_reference(
+            std::slice::from_ref(c),
+            &fixture::references(),
+            "nine_spring",
+            "two_angles",
+        )
+        .unwrap();
+        claim_for(&r, metric)
+    }
+
+    fn rk4_at(s: &mut Summary, dt: f64) -> &mut Record {
+        s.records
+            .iter_mut()
+            .find(|r| r.integrator == "rk4" && r.dt == Some(dt))
+            .unwrap()
+    }
+
+    fn failing(rows: &[GateRow]) -> Vec<&GateRow> {
+        rows.iter().filter(|r| r.verdict == Verdict::Fail).collect()
+    }
+
+    /// An unchanged summary passes every comparison: one rhs_evals row per run (Newton
+    /// counts, 0 on both sides, are skipped) plus the errors above the floor; the table shows
+    /// only the count line for them.
+    #[test]
+    fn unchanged_summary_passes() {
+        let c = nine();
+        let s = passing(&c);
+        let rows = compare(&c, &s, &s);
+        assert!(
+            rows.iter()
+                .all(|r| r.verdict == Verdict::Pass && is_baseline_row(r))
+        );
+        assert_eq!(rows.iter().filter(|r| r.metric == "rhs_evals").count(), 4);
+        assert!(rows.iter().all(|r| r.metric != "newton_iters"));
+        let floor = FLOOR_CLAIMS * claim(&c, "rotation_error_max");
+        assert!(
+            floor < 4.0e-6,
+            "the fixture's 4e-6 error lies above the floor {floor:e}"
+        );
+        assert!(
+            rows.iter()
+                .any(|r| r.metric == "rotation_error_max" && r.dt == Some(1.0e-2))
+        );
+        let mut out = vec![];
+        print_table(&rows, &mut out).unwrap();
+        let t = String::from_utf8(out).unwrap();
+        let n = rows.len();
+        assert_eq!(
+            t,
+            format!("baseline: {n} comparisons, 0 regressions\n{n} passed, 0 failed\n")
+        );
+    }
+
+    /// Doubled RHS evaluations are a regression; 4.75 % more are not, 5.25 % more are.
+    #[test]
+    fn doubled_rhs_evals_fail() {
+        let c = nine();
+        let base = passing(&c);
+        let mut s = base.clone();
+        rk4_at(&mut s, 1.0e-2).stats.rhs_evals = 8000;
+        let rows = compare(&c, &s, &base);
+        let f = failing(&rows);
+        assert_eq!(f.len(), 1, "{f:?}");
+        assert_eq!(
+            (f[0].metric.as_str(), f[0].value, f[0].threshold.as_str()),
+            ("rhs_evals", Some(8000.0), "<= 1.05 x baseline 4000")
+        );
+        assert_eq!(f[0].note, "regression: +100.0 % work");
+        rk4_at(&mut s, 1.0e-2).stats.rhs_evals = 4190;
+        assert!(failing(&compare(&c, &s, &base)).is_empty());
+        rk4_at(&mut s, 1.0e-2).stats.rhs_evals = 4210;
+        assert_eq!(failing(&compare(&c, &s, &base)).len(), 1);
+        // Newton iterations appearing where there were none are a regression too.
+        rk4_at(&mut s, 1.0e-2).stats.rhs_evals = 4000;
+        rk4_at(&mut s, 1.0e-2).stats.newton_iters = 3;
+        let rows = compare(&c, &s, &base);
+        let f = failing(&rows);
+        assert_eq!((f.len(), f[0].metric.as_str()), (1, "newton_iters"));
+    }
+
+    /// A 10x error growth above 100x the accuracy claim is a regression; below it (both
+    /// values, or only the old one) it is not compared at all.
+    #[test]
+    fn error_growth_above_the_floor_only() {
+        let c = nine();
+        let k = claim(&c, "rotation_error_max");
+        let set = |old: f64, new: f64| {
+            let mut base = passing(&c);
+            let mut s = base.clone();
+            rk4_at(&mut base, 1.0e-2)
+                .metrics
+                .insert("rotation_error_max".into(), Some(old));
+            rk4_at(&mut s, 1.0e-2)
+                .metrics
+                .insert("rotation_error_max".into(), Some(new));
+            compare(&c, &s, &base)
+        };
+        let rot = |rows: &[GateRow]| {
+            rows.iter()
+                .filter(|r| r.metric == "rotation_error_max" && r.dt == Some(1.0e-2))
+                .cloned()
+                .collect::<Vec<_>>()
+        };
+        let rows = set(1.0e3 * k, 1.0e4 * k);
+        let r = rot(&rows);
+        assert_eq!(r.len(), 1);
+        assert_eq!(r[0].verdict, Verdict::Fail);
+        assert!(
+            r[0].note.starts_with("regression: 10.000x"),
+            "{}",
+            r[0].note
+        );
+        assert_eq!(exit_code(&rows), 1);
+        // 2.9x is within the factor 3.
+        let rows = set(1.0e3 * k, 2.9e3 * k);
+        assert_eq!(rot(&rows)[0].verdict, Verdict::Pass);
+        // Both below the floor: not a comparison.
+        let rows = set(k, 10.0 * k);
+        assert!(rot(&rows).is_empty());
+        assert_eq!(exit_code(&rows), 0);
+        // Only the old value below the floor: not compared either.
+        let rows = set(50.0 * k, 500.0 * k);
+        assert!(rot(&rows).is_empty());
+        assert_eq!(exit_code(&rows), 0);
+    }
+
+    /// A run ok in the baseline that now fails is a regression; one from other physics makes
+    /// its scene fail once; a baseline with no run in common is unusable input.
+    #[test]
+    fn failures_stale_and_disjoint() {
+        let c = nine();
+        let base = passing(&c);
+        let mut s = base.clone();
+        let r = rk4_at(&mut s, 5.0e-3);
+        r.status = Status::Failed;
+        r.failure = Some(Failure::new(FailureKind::NonFinite, 7.5, "NaN in omega"));
+        let rows = compare(&c, &s, &base);
+        let f = failing(&rows);
+        assert_eq!(f.len(), 1);
+        assert_eq!(
+            (f[0].metric.as_str(), f[0].note.as_str()),
+            ("status", "run failed: non_finite at t = 7.5: NaN in omega")
+        );
+        let mut old = base.clone();
+        for r in &mut old.records {
+            r.inputs_sha256 = "1".repeat(64);
+        }
+        let rows = compare(&c, &base, &old);
+        assert_eq!(rows.len(), 1);
+        assert_eq!(
+            (rows[0].metric.as_str(), rows[0].verdict),
+            ("inputs_sha256", Verdict::Fail)
+        );
+        assert!(rows[0].note.starts_with("4 run(s) of this scene"));
+        let mut other = base.clone();
+        for r in &mut other.records {
+            r.dt = r.dt.map(|h| h * 3.0);
+            r.tol = r.tol.map(|t| t * 0.01);
+        }
+        let e = compare_baseline(
+            std::slice::from_ref(&c),
+            &base,
+            &other,
+            Path::new(BASELINE),
+            &fixture::references(),
+            DEFAULT_FACTOR,
+        )
+        .unwrap_err();
+        assert!(
+            matches!(e, GateError::Disjoint { .. }) && e.to_string().starts_with(BASELINE),
+            "{e}"
+        );
+    }
+
+    /// `--update-baseline` writes the summary as the baseline; `evaluate` with `--baseline`
+    /// then passes, catches a later regression, and an unreadable baseline is bad input.
+    #[test]
+    fn update_then_compare_through_evaluate() {
+        let dir = fixture::scratch("baseline");
+        let c = nine();
+        let s = passing(&c);
+        let summary_path = dir.join("summary.json");
+        std::fs::write(&summary_path, serde_json::to_string(&s).unwrap()).unwrap();
+        let baseline = dir.join("baseline").join("quick.json");
+        update_baseline(&summary_path, &baseline).unwrap();
+        assert_eq!(load_baseline(&baseline).unwrap(), s);
+        let o = GateOptions {
+            baseline: Some(baseline.clone()),
+            ..opts(true)
+        };
+        let rows = evaluate(std::slice::from_ref(&c), &s, None, &o).unwrap();
+        assert_eq!(rows.iter().filter(|r| !is_baseline_row(r)).count(), 3);
+        assert!(rows.iter().filter(|r| is_baseline_row(r)).count() >= 4);
+        assert_eq!(exit_code(&rows), 0);
+        let mut worse = s.clone();
+        rk4_at(&mut worse, 1.0e-2).stats.rhs_evals = 8000;
+        let rows = evaluate(std::slice::from_ref(&c), &worse, None, &o).unwrap();
+        assert_eq!(exit_code(&rows), 1);
+        let mut out = vec![];
+        print_table(&rows, &mut out).unwrap();
+        let t = String::from_utf8(out).unwrap();
+        assert!(
+            t.contains("rhs_evals") && t.contains("+100.0 % work"),
+            "{t}"
+        );
+        assert!(t.contains(", 1 regressions\n"), "{t}");
+        std::fs::write(&baseline, "{\"schema\": 1, ").unwrap();
+        let e = evaluate(std::slice::from_ref(&c), &s, None, &o).unwrap_err();
+        assert!(
+            e.to_string().starts_with(&format!(
+                "{}: unusable baseline: truncated",
+                baseline.display()
+            )),
+            "{e}"
+        );
+        let e = update_baseline(&dir.join("none.json"), &baseline).unwrap_err();
+        assert!(e.to_string().contains("none.json: unusable summary"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

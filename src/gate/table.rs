@@ -1,0 +1,109 @@
+//! The gate's terminal table and exit code: one line per gate row (case, variant, metric,
+//! value, threshold, verdict and, for a failure, why), of the baseline rows only the failing
+//! ones and a count line, then `N passed, N failed` as the last line. Exit 0 when every row
+//! passes, 1 when any fails (bad input, exit 2, never gets this far).
+use std::io::Write;
+
+use super::{GateRow, Verdict, WORK_METRICS, is_baseline_row};
+
+fn variant(r: &GateRow) -> String {
+    let point = match (r.dt, r.tol) {
+        (Some(h), _) => format!(" dt={h:e}"),
+        (None, Some(t)) => format!(" tol={t:e}"),
+        _ => String::new(),
+    };
+    format!(
+        "{}/{}/{}/{}{point}",
+        r.scene, r.param, r.integrator, r.formulation
+    )
+}
+
+fn value(r: &GateRow) -> String {
+    match r.value {
+        None => "-".into(),
+        Some(x) if WORK_METRICS.contains(&r.metric.as_str()) && x.fract() == 0.0 => {
+            format!("{x:.0}")
+        }
+        Some(x) => format!("{x:.3e}"),
+    }
+}
+
+/// Prints the table; its last line is `N passed, N failed` (over all rows, baseline
+/// comparisons included).
+pub fn print_table(rows: &[GateRow], out: &mut impl Write) -> std::io::Result<()> {
+    let shown: Vec<[String; 6]> = rows
+        .iter()
+        .filter(|r| !is_baseline_row(r) || r.verdict == Verdict::Fail)
+        .map(|r| {
+            let verdict = match r.verdict {
+                Verdict::Pass => "PASS".to_string(),
+                Verdict::Fail if r.note.is_empty() => "FAIL".to_string(),
+                Verdict::Fail => format!("FAIL  {}", r.note),
+            };
+            [
+                r.case.clone(),
+                variant(r),
+                r.metric.clone(),
+                value(r),
+                r.threshold.clone(),
+                verdict,
+            ]
+        })
+        .collect();
+    let header = ["case", "variant", "metric", "value", "threshold", "verdict"];
+    if !shown.is_empty() {
+        let mut w = header.map(str::len);
+        for cells in &shown {
+            for (k, c) in cells.iter().enumerate() {
+                w[k] = w[k].max(c.len());
+            }
+        }
+        let line = |cells: [&str; 6]| {
+            format!(
+                "{:<a$}  {:<b$}  {:<c$}  {:>d$}  {:<e$}  {}",
+                cells[0],
+                cells[1],
+                cells[2],
+                cells[3],
+                cells[4],
+                cells[5],
+                a = w[0],
+                b = w[1],
+                c = w[2],
+                d = w[3],
+                e = w[4],
+            )
+        };
+        writeln!(out, "{}", line(header).trim_end())?;
+        for cells in &shown {
+            writeln!(
+                out,
+                "{}",
+                line(cells.each_ref().map(String::as_str)).trim_end()
+            )?;
+        }
+    }
+    let baseline: Vec<&GateRow> = rows.iter().filter(|r| is_baseline_row(r)).collect();
+    if !baseline.is_empty() {
+        let m = baseline
+            .iter()
+            .filter(|r| r.verdict == Verdict::Fail)
+            .count();
+        writeln!(
+            out,
+            "baseline: {} comparisons, {m} regressions",
+            baseline.len()
+        )?;
+    }
+    let failed = rows.iter().filter(|r| r.verdict == Verdict::Fail).count();
+    writeln!(out, "{} passed, {failed} failed", rows.len() - failed)
+}
+
+/// 0 when every row passes, 1 when any fails.
+pub fn exit_code(rows: &[GateRow]) -> i32 {
+    if rows.iter().any(|r| r.verdict == Verdict::Fail) {
+        1
+    } else {
+        0
+    }
+}
