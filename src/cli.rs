@@ -52,6 +52,8 @@ pub enum Command {
     Run(RunArgs),
     /// One run, its samples written as JSON.
     Trajectory(TrajectoryArgs),
+    /// Evaluate the cases' [[gates]] against a summary; table, exit 0/1 (2: bad input).
+    Gate(GateArgs),
     /// Regenerate a stored reference, or (--check) recompute and compare.
     Reference {
         #[arg(long)]
@@ -79,6 +81,25 @@ pub struct RunArgs {
     /// Override every selected scene's horizon (errors against references are then absent).
     #[arg(long = "t-end")]
     pub t_end: Option<f64>,
+}
+
+#[derive(Debug, Args, Clone)]
+pub struct GateArgs {
+    /// The summary to gate.
+    #[arg(long, default_value = "reports/latest/summary.json")]
+    pub summary: PathBuf,
+    /// Only the `quick = true` gates, on the quick ladders.
+    #[arg(long)]
+    pub quick: bool,
+    /// An earlier summary to compare with (error metrics, RHS evaluations, Newton iterations).
+    #[arg(long)]
+    pub baseline: Option<PathBuf>,
+    /// How much worse an error metric may get against the baseline.
+    #[arg(long, default_value_t = crate::gate::DEFAULT_FACTOR)]
+    pub factor: f64,
+    /// Rewrite the baseline file (default reports/baseline/quick.json) from the summary.
+    #[arg(long)]
+    pub update_baseline: bool,
 }
 
 #[derive(Debug, Args, Clone)]
@@ -146,6 +167,7 @@ pub fn execute(cli: Cli) -> i32 {
         Some(Command::List { json }) => cmd_list(&common, json),
         Some(Command::Run(a)) => cmd_run(&common, &a),
         Some(Command::Trajectory(a)) => cmd_trajectory(&common, &a),
+        Some(Command::Gate(a)) => cmd_gate(&common, &a),
         Some(Command::Reference { case, scene, check }) => {
             cmd_reference(&common, &case, scene.as_deref(), check)
         }
@@ -314,6 +336,39 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
         opts.out.join("summary.json").display()
     );
     Ok(EXIT_OK)
+}
+
+fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
+    if a.update_baseline {
+        let target = a
+            .baseline
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("reports/baseline/quick.json"));
+        crate::gate::update_baseline(&a.summary, &target).map_err(|e| e.to_string())?;
+        println!(
+            "baseline {} rewritten from {}",
+            target.display(),
+            a.summary.display()
+        );
+        return Ok(EXIT_OK);
+    }
+    if !(a.factor.is_finite() && a.factor >= 1.0) {
+        return Err(format!("--factor {}: must be a number >= 1", a.factor));
+    }
+    let cases = load_cases(common)?;
+    let summary = crate::gate::load_summary(&a.summary).map_err(|e| e.to_string())?;
+    let stability = crate::gate::stability_beside(&a.summary).map_err(|e| e.to_string())?;
+    let opts = crate::gate::GateOptions {
+        quick: a.quick,
+        baseline: a.baseline.clone(),
+        factor: a.factor,
+        references: common.references.clone().unwrap_or_else(default_references),
+    };
+    let rows = crate::gate::evaluate(&cases, &summary, stability.as_ref(), &opts)
+        .map_err(|e| e.to_string())?;
+    let mut out = std::io::stdout().lock();
+    crate::gate::print_table(&rows, &mut out).map_err(|e| e.to_string())?;
+    Ok(crate::gate::exit_code(&rows))
 }
 
 fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {

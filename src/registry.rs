@@ -143,7 +143,15 @@ macro_rules! fixed {
                 let sys = RigidSystem::<$chart, $form>::new(setup.body.clone());
                 let x0 = sys.state_from(&setup.initial);
                 let mut m = $ctor;
-                run_fixed(&sys, &mut m, x0, dt, &setup.grid, &setup.limits, setup.observe)
+                run_fixed(
+                    &sys,
+                    &mut m,
+                    x0,
+                    dt,
+                    &setup.grid,
+                    &setup.limits,
+                    setup.observe,
+                )
             },
         }
     };
