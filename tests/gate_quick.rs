@@ -1,0 +1,65 @@
+//! The real quick tier passes the quick gates and the committed baseline (issue 3, item 2),
+//! and the gate command's exit codes: 0 on the real quick tier, 2 on a truncated summary.
+mod common;
+
+use mbdbench::gate::{self, GateOptions, Verdict};
+
+/// Every quick gate of every case passes on a fresh quick run of the whole catalogue, and the
+/// fresh run shows no regression against reports/baseline/quick.json.
+#[test]
+fn real_quick_tier_passes_gates_and_baseline() {
+    let mut rows = vec![];
+    let cases = mbdbench::case::embedded().unwrap();
+    let out = common::temp_dir("gate-quick");
+    let opts = mbdbench::suite::RunOptions {
+        quick: true,
+        jobs: 2,
+        out: out.clone(),
+        t_end: None,
+        references: mbdbench::cli::default_references(),
+        progress: false,
+        repeats: 0,
+    };
+    let plans = mbdbench::plan::plans(&cases, &[], &[]).unwrap();
+    let summary =
+        mbdbench::suite::run_catalogue(&plans, &mbdbench::suite::VariantFilter::default(), &opts)
+            .unwrap();
+    let baseline =
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reports/baseline/quick.json");
+    let gopts = GateOptions {
+        quick: true,
+        baseline: Some(baseline),
+        factor: gate::DEFAULT_FACTOR,
+        references: mbdbench::cli::default_references(),
+    };
+    rows.extend(gate::evaluate(&cases, &summary, None, &gopts).unwrap());
+    let failed: Vec<_> = rows.iter().filter(|r| r.verdict == Verdict::Fail).collect();
+    assert!(
+        failed.is_empty(),
+        "{} failing rows: {:?}",
+        failed.len(),
+        &failed[..failed.len().min(5)]
+    );
+    assert!(rows.len() > 100, "{} rows", rows.len());
+    assert_eq!(gate::exit_code(&rows), 0);
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+/// `mbdbench gate` on a truncated summary exits 2 naming the file, and writes nothing.
+#[test]
+fn truncated_summary_exits_2() {
+    let d = common::temp_dir("gate-trunc");
+    let text = std::fs::read_to_string(
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reports/baseline/quick.json"),
+    )
+    .unwrap();
+    let f = d.join("summary.json");
+    std::fs::write(&f, &text[..text.len() / 3]).unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_mbdbench"))
+        .args(["gate", "--quick", "--summary", f.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("summary.json"));
+    let _ = std::fs::remove_dir_all(&d);
+}
