@@ -321,7 +321,7 @@ fn draw_chart(
 ) -> Result<(), DrawError> {
     let category = matches!(x.scale, super::axes::Scale::Category(_));
     let mut chart = ChartBuilder::on(area)
-        .caption(&p.title, font(15.0).color(&INK))
+        .caption(&p.title, font(14.0).color(&INK))
         .margin(10)
         .x_label_area_size(if category { 56 } else { 44 })
         .y_label_area_size(64)

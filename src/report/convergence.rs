@@ -67,11 +67,11 @@ pub fn plot(cv: &CaseView, sv: &SceneView, sel: Selection, footer: &str) -> Plot
     Plot {
         id: format!("{}/conv_{}", sv.name, sel.id()),
         title: format!(
-            "{} / {}: {} vs step, {}",
+            "{}/{}: {} vs step ({})",
             cv.name,
             sv.name,
             cv.primary,
-            sel.title()
+            sel.short()
         ),
         x_label: "step dt (s)".into(),
         y_label: cv.primary.clone(),

@@ -42,11 +42,12 @@ pub fn esc(s: &str) -> String {
 }
 
 const CSS: &str = "
-body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:0 auto;max-width:1320px;
+body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:0 auto;max-width:1880px;
  padding:0 16px 40px;color:#222;line-height:1.4}
 h1{margin:18px 0 4px}h2{margin:28px 0 4px;border-bottom:2px solid #ccc}h3{margin:18px 0 6px}
 .env{font-size:13px;color:#555;font-family:ui-monospace,monospace;margin:4px 0 10px}
 .key{font-size:14px;background:#f6f6f6;padding:8px 12px;border-radius:4px}
+.figs{display:grid;grid-template-columns:repeat(auto-fill,minmax(880px,1fr));gap:0 28px}
 figure{margin:14px 0 22px}figure svg{display:block;max-width:100%;height:auto}
 figcaption{font-size:13px;color:#444;max-width:900px}
 .nodata{width:860px;padding:16px 20px;border:1px dashed #bbb;color:#777;background:#fafafa}
@@ -140,10 +141,11 @@ fn figures(kind: &str, title: &str, figs: &[Figure]) -> String {
     if figs.is_empty() {
         s.push_str("<p class=\"nodata\">no data</p>\n");
     }
+    s.push_str("<div class=\"figs\">\n");
     for f in figs {
         s.push_str(&figure(f));
     }
-    s.push_str("</div>\n");
+    s.push_str("</div>\n</div>\n");
     s
 }
 

@@ -353,7 +353,7 @@ mod tests {
             assert!(html.contains(title), "{title}");
         }
         // The failing Euler run shows in the failure table with its kind and times.
-        assert!(md.contains("| large | euler_zxz | rk4 | body | dt 2e-2, dt 1e-2, dt 5e-3 | singular_chart | 0.5, 0.6, 0.7 |"), "{md}");
+        assert!(md.contains("| large | euler_zxz | rk4 | body | dt 2e-2, 1e-2, 5e-3 | singular_chart | 0.5, 0.6, 0.7 |"), "{md}");
         let _ = std::fs::remove_dir_all(&dir);
     }
 

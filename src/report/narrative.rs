@@ -166,14 +166,14 @@ fn scene_sentence(cv: &CaseView, sv: &SceneView) -> String {
             .count()
     });
     let tie = if ties > 1 {
-        format!(" (first in registry order of {ties} runs with as many)")
+        format!("; {ties} runs tie at this cost, the first in registry order is named")
     } else {
         String::new()
     };
     match (c.by_rhs, c.by_wall, c.best) {
         (Some(a), Some(b), _) => format!(
-            "Scene {}: the cheapest run reaching {p} <= {} is {} with {} RHS evaluations{tie} \
-             ({p} {}); by wall time, {} in {} s ({p} {}).",
+            "Scene {}: the cheapest run reaching {p} <= {} is {} with {} RHS evaluations ({p} \
+             {}{tie}); by wall time, {} in {} s ({p} {}).",
             sv.name,
             num(TARGET),
             run_name(a),
@@ -185,7 +185,7 @@ fn scene_sentence(cv: &CaseView, sv: &SceneView) -> String {
         ),
         (Some(a), None, _) => format!(
             "Scene {}: the cheapest run reaching {p} <= {} is {} with {} RHS \
-             evaluations{tie} ({p} {}); no wall time was recorded.",
+             evaluations ({p} {}{tie}); no wall time was recorded.",
             sv.name,
             num(TARGET),
             run_name(a),

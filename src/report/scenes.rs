@@ -201,7 +201,7 @@ pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
     };
     Plot {
         id: id.into(),
-        title: format!("{}: {} across scenes, {}", cv.name, y_label, sel.title()),
+        title: format!("{}: {} across scenes ({})", cv.name, y_label, sel.short()),
         x_label: "scene".into(),
         y_label,
         x: super::axes::Scale::Category(names),

@@ -33,12 +33,12 @@ impl Selection {
         }
     }
 
-    /// A title fragment.
-    pub fn title(self) -> &'static str {
+    /// A short title fragment.
+    pub fn short(self) -> &'static str {
         match self {
-            Selection::Rk4 => "rk4 on every parameterization",
-            Selection::Adaptive => "adaptive methods on every parameterization",
-            Selection::So3 => "every integrator on so3",
+            Selection::Rk4 => "rk4, every chart",
+            Selection::Adaptive => "adaptive, every chart",
+            Selection::So3 => "so3, every integrator",
         }
     }
 

@@ -73,7 +73,16 @@ pub fn failures(cv: &CaseView) -> Table {
                 by_kind.entry(kind).or_default().push(r);
             }
             for (kind, rs) in by_kind {
-                let steps: Vec<String> = rs.iter().map(|r| step_label(r)).collect();
+                // `dt 1e-2, 5e-3, 2.5e-3`: the kind of ladder named once.
+                let steps: Vec<String> = rs
+                    .iter()
+                    .enumerate()
+                    .map(|(i, r)| match (i, data::step_of(r)) {
+                        (0, _) => step_label(r),
+                        (_, Some(v)) => num(v),
+                        (_, None) => "-".into(),
+                    })
+                    .collect();
                 let times: Vec<String> = rs
                     .iter()
                     .map(|r| r.failure.as_ref().map(|f| time(f.t)).unwrap_or_default())

@@ -148,10 +148,10 @@ pub fn plot(
     Plot {
         id: format!("{}/{id}_{}", sv.name, sel.id()),
         title: format!(
-            "{} / {}: {name} over time, {}",
+            "{}/{}: {name} over time ({})",
             cv.name,
             sv.name,
-            sel.title()
+            sel.short()
         ),
         x_label: "t (s)".into(),
         y_label: y_label.into(),

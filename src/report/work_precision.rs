@@ -88,15 +88,15 @@ pub fn plot(cv: &CaseView, sv: &SceneView, sel: Selection, cost: Cost, footer: &
     Plot {
         id: format!("{}/wp_{}_{}", sv.name, cost.id(), sel.id()),
         title: format!(
-            "{} / {}: {} vs {}, {}",
+            "{}/{}: {} vs {} ({})",
             cv.name,
             sv.name,
             cv.primary,
             match cost {
                 Cost::Wall => "wall time",
-                Cost::Rhs => "RHS evaluations",
+                Cost::Rhs => "RHS evals",
             },
-            sel.title()
+            sel.short()
         ),
         x_label: cost.label().into(),
         y_label: cv.primary.clone(),
