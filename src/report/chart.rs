@@ -12,8 +12,8 @@
 //! line with a dash array stays small. Each line is drawn in its integrator's colour with its
 //! parameterization's marker, dashed for the spatial formulation (`style`). Runs that failed
 //! have no value: their markers sit in a shaded "failed" band above the data, at their x
-//! (pinned to the left edge when the x value cannot be shown, e.g. 0 RHS evaluations on a
-//! log axis).
+//! (the x range follows the lines; a mark outside it, or one that cannot be shown such as 0
+//! RHS evaluations on a log axis, is pinned to the nearest edge), stacked when they coincide.
 //!
 //! Text: without plotters' `ttf`/`ab_glyph` features the SVG backend writes `<text>` elements
 //! and sizes them with a crude estimate (0.7 em per character); the browser renders them with
