@@ -39,6 +39,7 @@ pub mod plan;
 pub mod reference;
 pub mod refgen;
 pub mod registry;
+pub mod report;
 pub mod rotation;
 pub mod run;
 pub mod score;

@@ -1,0 +1,92 @@
+//! Convergence plots: the primary error against the fixed step (log-log), one line per
+//! fixed-step variant, with the observed order `p` the suite fitted (summary `fits`: the
+//! least-squares slope of log error against log step over the ladder points between 100x the
+//! reference's accuracy claim and 1e-2; `n/a` with fewer than 3 such points) in the legend. A
+//! method of order p shows a line of slope p in its asymptotic range; a flattening at small
+//! steps is the reference or round-off floor.
+//!
+//! Adaptive variants have no step and are not drawn here (they are in the work-precision
+//! plots). Failed runs are marked in the "failed" band at their step.
+use super::chart::{FailMark, Legend, Line, Plot};
+use super::data::{CaseView, SceneView, VariantRuns};
+use super::select::Selection;
+use crate::summary::Status;
+
+/// The legend text of a variant: the names that vary in the selection (the title names the
+/// fixed one) and the fitted order.
+pub fn order_label(v: &VariantRuns, sel: Selection) -> String {
+    let p = match v.fit.and_then(|f| f.order) {
+        Some(p) => format!("p = {p:.2}"),
+        None => "p n/a".into(),
+    };
+    let k = &v.key;
+    match sel {
+        Selection::Rk4 => format!("{} {}: {p}", k.param, k.formulation),
+        Selection::So3 => format!("{} {}: {p}", k.integrator, k.formulation),
+        Selection::Adaptive => format!("{} {} {}: {p}", k.param, k.integrator, k.formulation),
+    }
+}
+
+/// The convergence plots of a scene (selections with fixed-step variants: rk4 on every chart,
+/// every fixed-step integrator on so3).
+pub fn plots(cv: &CaseView, sv: &SceneView, footer: &str) -> Vec<Plot> {
+    [Selection::Rk4, Selection::So3]
+        .into_iter()
+        .map(|sel| plot(cv, sv, sel, footer))
+        .collect()
+}
+
+/// One convergence plot.
+pub fn plot(cv: &CaseView, sv: &SceneView, sel: Selection, footer: &str) -> Plot {
+    let mut lines = vec![];
+    let mut fails = vec![];
+    for v in sv.variants.iter().filter(|v| sel.admits(v) && !v.adaptive) {
+        let mut points = vec![];
+        for r in &v.runs {
+            let Some(dt) = r.dt else { continue };
+            match r.status {
+                Status::Ok => {
+                    if let Some(Some(e)) = r.metrics.get(&cv.primary) {
+                        points.push((dt, *e));
+                    }
+                }
+                Status::Failed => fails.push(FailMark {
+                    key: v.key.clone(),
+                    x: dt,
+                }),
+                Status::NotApplicable => {}
+            }
+        }
+        lines.push(Line {
+            key: v.key.clone(),
+            points,
+            label: Some(order_label(v, sel)),
+            marker_every: 1,
+        });
+    }
+    Plot {
+        id: format!("{}/conv_{}", sv.name, sel.id()),
+        title: format!(
+            "{}/{}: {} vs step ({})",
+            cv.name,
+            sv.name,
+            cv.primary,
+            sel.short()
+        ),
+        x_label: "step dt (s)".into(),
+        y_label: cv.primary.clone(),
+        x: super::axes::Scale::Log,
+        y: super::axes::Scale::Log,
+        lines,
+        fails,
+        legend: Legend::PerLine,
+        caption: format!(
+            "Convergence: {} against the fixed step. {} Adaptive methods are not drawn. p is \
+             the observed order fitted by the suite (slope over the ladder points between 100x \
+             the reference's accuracy claim and 1e-2; n/a with fewer than 3 such points).",
+            cv.primary,
+            sel.describe()
+        ),
+        footer: footer.into(),
+    }
+}

@@ -1,0 +1,492 @@
+//! `index.html`: one self-contained page (design.md, "Reports"): inline CSS, every plot an
+//! inline `<svg>` element, no `src` or `href` attribute at all (not even in-page anchors), no
+//! script, no network. Each case is a `<section class="case" data-case=...>` whose parts carry
+//! `data-section` names (`narrative`, `work-precision`, `convergence`, `timeseries`,
+//! `failures`, `largest-step`, `matrix`, ...) so that `render_check` (and a CI browser step)
+//! can find them; each figure is a `<figure data-plot=...>` holding an `<svg>` or a
+//! `<p class="nodata">`. Every case section repeats the environment line (commit, rustc, CPU,
+//! OS, date).
+//!
+//! `render_check` is a small tag tokenizer (not a full HTML parser): it reads start tags and
+//! their attributes (quoted or not), skips comments, and reports external references,
+//! scripts and embedded resources, `url(`/`@import` in CSS, and missing sections.
+use super::chart::Rendered;
+use super::tables::{Table, Tone};
+use super::{CaseSection, Figure, Page};
+
+/// The `data-section`s every case section must contain.
+pub const REQUIRED_SECTIONS: [&str; 7] = [
+    "narrative",
+    "work-precision",
+    "convergence",
+    "timeseries",
+    "failures",
+    "largest-step",
+    "matrix",
+];
+
+/// Escapes text for HTML content and attribute values.
+pub fn esc(s: &str) -> String {
+    let mut o = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => o.push_str("&amp;"),
+            '<' => o.push_str("&lt;"),
+            '>' => o.push_str("&gt;"),
+            '"' => o.push_str("&quot;"),
+            '\'' => o.push_str("&#39;"),
+            _ => o.push(c),
+        }
+    }
+    o
+}
+
+const CSS: &str = "
+body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:0 auto;max-width:1880px;
+ padding:0 16px 40px;color:#222;line-height:1.4}
+h1{margin:18px 0 4px}h2{margin:28px 0 4px;border-bottom:2px solid #ccc}h3{margin:18px 0 6px}
+.env{font-size:13px;color:#555;font-family:ui-monospace,monospace;margin:4px 0 10px}
+.key{font-size:14px;background:#f6f6f6;padding:8px 12px;border-radius:4px}
+.figs{display:grid;grid-template-columns:repeat(auto-fill,minmax(880px,1fr));gap:0 28px}
+figure{margin:14px 0 22px}figure svg{display:block;max-width:100%;height:auto}
+figcaption{font-size:13px;color:#444;max-width:900px}
+.nodata{width:860px;padding:16px 20px;border:1px dashed #bbb;color:#777;background:#fafafa}
+details{margin:8px 0}summary{cursor:pointer;font-weight:600;margin:6px 0}
+.tablewrap{overflow-x:auto;max-width:100%}
+table{border-collapse:collapse;font-size:12px;margin:6px 0 14px}
+th,td{border:1px solid #ddd;padding:2px 6px;text-align:left;white-space:nowrap}
+th{background:#eee;position:sticky;top:0}
+td.msg{white-space:normal;min-width:320px}
+td.pass{background:#d4efd4}td.fail{background:#f6c8c8;font-weight:600}td.neutral{background:#f3f3f3}
+.narrative li{max-width:980px;margin:3px 0}
+.scene{border-left:3px solid #ddd;padding-left:12px}
+";
+
+fn env_p(env: &str) -> String {
+    format!("<p class=\"env\">{}</p>\n", esc(env))
+}
+
+fn figure(f: &Figure) -> String {
+    let body = match &f.body {
+        Rendered::Svg(s) => s.clone(),
+        Rendered::NoData(why) => format!("<p class=\"nodata\">{}</p>", esc(why)),
+    };
+    format!(
+        "<figure data-plot=\"{}\">\n{body}\n<figcaption><b>{}</b>. {}</figcaption>\n</figure>\n",
+        esc(&f.kind),
+        esc(&f.title),
+        esc(&f.caption)
+    )
+}
+
+fn tone_class(t: Tone) -> &'static str {
+    match t {
+        Tone::Plain => "",
+        Tone::Neutral => " class=\"neutral\"",
+        Tone::Pass => " class=\"pass\"",
+        Tone::Fail => " class=\"fail\"",
+    }
+}
+
+/// Renders a table (long ones folded in a `<details>`).
+pub fn table(t: &Table, open_below: usize) -> String {
+    let mut s = format!(
+        "<div data-section=\"{}\">\n<h3>{}</h3>\n<p>{}</p>\n",
+        t.kind,
+        esc(&t.title),
+        esc(&t.note)
+    );
+    if t.rows.is_empty() {
+        s.push_str("<p class=\"nodata\">no rows</p>\n</div>\n");
+        return s;
+    }
+    let fold = t.rows.len() > open_below;
+    if fold {
+        s.push_str(&format!(
+            "<details><summary>{} rows</summary>\n",
+            t.rows.len()
+        ));
+    }
+    s.push_str("<div class=\"tablewrap\">\n<table>\n<thead><tr>");
+    for h in &t.header {
+        s.push_str(&format!("<th>{}</th>", esc(h)));
+    }
+    s.push_str("</tr></thead>\n<tbody>\n");
+    for row in &t.rows {
+        s.push_str("<tr>");
+        for (i, c) in row.iter().enumerate() {
+            let msg = t
+                .header
+                .get(i)
+                .is_some_and(|h| h == "message" || h == "note");
+            let class = if msg && c.tone == Tone::Plain {
+                " class=\"msg\""
+            } else {
+                tone_class(c.tone)
+            };
+            s.push_str(&format!("<td{class}>{}</td>", esc(&c.text)));
+        }
+        s.push_str("</tr>\n");
+    }
+    s.push_str("</tbody>\n</table>\n</div>\n");
+    if fold {
+        s.push_str("</details>\n");
+    }
+    s.push_str("</div>\n");
+    s
+}
+
+fn figures(kind: &str, title: &str, figs: &[Figure]) -> String {
+    let mut s = format!("<div data-section=\"{kind}\">\n<h3>{}</h3>\n", esc(title));
+    if figs.is_empty() {
+        s.push_str("<p class=\"nodata\">no data</p>\n");
+    }
+    s.push_str("<div class=\"figs\">\n");
+    for f in figs {
+        s.push_str(&figure(f));
+    }
+    s.push_str("</div>\n</div>\n");
+    s
+}
+
+fn case_section(c: &CaseSection, env: &str) -> String {
+    let mut s = format!(
+        "<section class=\"case\" data-case=\"{}\">\n<h2>{}{}</h2>\n",
+        esc(&c.name),
+        esc(&c.name),
+        if c.title.is_empty() {
+            String::new()
+        } else {
+            format!(" &mdash; {}", esc(&c.title))
+        }
+    );
+    s.push_str(&env_p(env));
+    s.push_str(
+        "<div data-section=\"narrative\" class=\"narrative\">\n<h3>What this shows</h3>\n<ul>\n",
+    );
+    for sentence in &c.narrative {
+        s.push_str(&format!("<li>{}</li>\n", esc(sentence)));
+    }
+    s.push_str("</ul>\n</div>\n");
+    if let Some(g) = &c.gates {
+        s.push_str(&table(g, 40));
+    }
+    if !c.across.is_empty() {
+        s.push_str(&figures("across-scenes", "Across scenes", &c.across));
+    }
+    for (i, sc) in c.scenes.iter().enumerate() {
+        s.push_str(&format!(
+            "<details class=\"scene\" data-section=\"scene\" data-scene=\"{}\"{}>\n<summary>Scene {} ({} plots, {} variants)</summary>\n",
+            esc(&sc.name),
+            if i == 0 { " open" } else { "" },
+            esc(&sc.name),
+            sc.work_precision.len() + sc.convergence.len() + sc.timeseries.len(),
+            sc.matrix.rows.len()
+        ));
+        s.push_str(&figures(
+            "work-precision",
+            &format!("{}: work-precision", sc.name),
+            &sc.work_precision,
+        ));
+        s.push_str(&figures(
+            "convergence",
+            &format!("{}: convergence", sc.name),
+            &sc.convergence,
+        ));
+        s.push_str(&figures(
+            "timeseries",
+            &format!(
+                "{}: energy drift and constraint residual over time",
+                sc.name
+            ),
+            &sc.timeseries,
+        ));
+        s.push_str(&table(&sc.matrix, 0));
+        s.push_str("</details>\n");
+    }
+    if c.scenes.is_empty() {
+        for kind in ["work-precision", "convergence", "timeseries", "matrix"] {
+            s.push_str(&format!(
+                "<div data-section=\"{kind}\"><p class=\"nodata\">no data</p></div>\n"
+            ));
+        }
+    }
+    s.push_str(&table(&c.failures, 30));
+    s.push_str(&table(&c.largest, 0));
+    s.push_str(&table(&c.na, 30));
+    s.push_str("</section>\n");
+    s
+}
+
+/// The whole page.
+pub fn render(page: &Page) -> String {
+    let mut s = String::from(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>mbdbench report</title>\n<style>",
+    );
+    s.push_str(CSS);
+    s.push_str("</style>\n</head>\n<body>\n<header>\n<h1>mbdbench report</h1>\n");
+    s.push_str(&env_p(&page.env_line));
+    s.push_str(&format!("<p class=\"key\">{}</p>\n", esc(super::KEY_TEXT)));
+    if let Some((pass, fail)) = page.gate_summary {
+        s.push_str(&format!(
+            "<p><b>Gates:</b> {pass} passed, {fail} failed.</p>\n"
+        ));
+    }
+    s.push_str("<p>Cases: ");
+    let names: Vec<String> = page
+        .cases
+        .iter()
+        .map(|c| format!("<b>{}</b>", esc(&c.name)))
+        .collect();
+    s.push_str(&if names.is_empty() {
+        "none (no data)".to_string()
+    } else {
+        names.join(", ")
+    });
+    s.push_str(".</p>\n</header>\n");
+    for c in &page.cases {
+        s.push_str(&case_section(c, &page.env_line));
+    }
+    s.push_str("</body>\n</html>\n");
+    s
+}
+
+/// One start tag: its name and attributes (names lower-cased).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tag {
+    pub name: String,
+    pub attrs: Vec<(String, String)>,
+}
+
+impl Tag {
+    fn attr(&self, name: &str) -> Option<&str> {
+        self.attrs
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.as_str())
+    }
+}
+
+/// The start tags of a document, in order (comments, end tags and doctype skipped).
+pub fn start_tags(html: &str) -> Vec<Tag> {
+    let b = html.as_bytes();
+    let mut out = vec![];
+    let mut i = 0;
+    while i < b.len() {
+        if b[i] != b'<' {
+            i += 1;
+            continue;
+        }
+        if html[i..].starts_with("<!--") {
+            i = html[i..].find("-->").map(|k| i + k + 3).unwrap_or(b.len());
+            continue;
+        }
+        i += 1;
+        if i >= b.len() || !(b[i].is_ascii_alphabetic()) {
+            continue;
+        }
+        let start = i;
+        while i < b.len() && !b[i].is_ascii_whitespace() && b[i] != b'>' && b[i] != b'/' {
+            i += 1;
+        }
+        let name = html[start..i].to_ascii_lowercase();
+        let mut attrs = vec![];
+        loop {
+            while i < b.len() && (b[i].is_ascii_whitespace() || b[i] == b'/') {
+                i += 1;
+            }
+            if i >= b.len() || b[i] == b'>' {
+                i += 1;
+                break;
+            }
+            let a0 = i;
+            while i < b.len() && !b[i].is_ascii_whitespace() && b[i] != b'=' && b[i] != b'>' {
+                i += 1;
+            }
+            let an = html[a0..i].to_ascii_lowercase();
+            while i < b.len() && b[i].is_ascii_whitespace() {
+                i += 1;
+            }
+            let mut value = String::new();
+            if i < b.len() && b[i] == b'=' {
+                i += 1;
+                while i < b.len() && b[i].is_ascii_whitespace() {
+                    i += 1;
+                }
+                if i < b.len() && (b[i] == b'"' || b[i] == b'\'') {
+                    let q = b[i];
+                    let v0 = i + 1;
+                    let end = b[v0..]
+                        .iter()
+                        .position(|&c| c == q)
+                        .map(|k| v0 + k)
+                        .unwrap_or(b.len());
+                    value = html[v0..end].to_string();
+                    i = end + 1;
+                } else {
+                    let v0 = i;
+                    while i < b.len() && !b[i].is_ascii_whitespace() && b[i] != b'>' {
+                        i += 1;
+                    }
+                    value = html[v0..i].to_string();
+                }
+            }
+            attrs.push((an, value));
+        }
+        out.push(Tag { name, attrs });
+    }
+    out
+}
+
+/// Problems of a report page: external references (any `src`/`href`-like attribute, a
+/// script, an embedded resource, a URL outside the SVG namespace declaration, CSS `url(` or
+/// `@import`), a missing environment line, a case without one of `REQUIRED_SECTIONS`, a
+/// figure with neither an `<svg>` nor a "no data" note. Empty when the page is fine.
+pub fn render_check(html: &str) -> Vec<String> {
+    let mut problems = vec![];
+    let tags = start_tags(html);
+    const REF_ATTRS: [&str; 9] = [
+        "src",
+        "href",
+        "xlink:href",
+        "srcset",
+        "action",
+        "formaction",
+        "poster",
+        "background",
+        "data",
+    ];
+    const RESOURCE_TAGS: [&str; 9] = [
+        "script", "link", "iframe", "object", "embed", "img", "base", "image", "use",
+    ];
+    for t in &tags {
+        if RESOURCE_TAGS.contains(&t.name.as_str()) {
+            problems.push(format!(
+                "<{}> element (script or external resource)",
+                t.name
+            ));
+        }
+        for (n, v) in &t.attrs {
+            if REF_ATTRS.contains(&n.as_str()) || n.ends_with(":href") {
+                problems.push(format!("<{}> has a {n}=\"{v}\" attribute", t.name));
+            } else if n.starts_with("on") {
+                problems.push(format!("<{}> has an event handler {n}", t.name));
+            } else if n != "xmlns"
+                && !n.starts_with("xmlns:")
+                && (v.contains("http://") || v.contains("https://") || v.contains("url("))
+            {
+                problems.push(format!("<{}> {n}=\"{v}\" refers to a URL", t.name));
+            }
+        }
+    }
+    let lower = html.to_ascii_lowercase();
+    if lower.contains("@import") {
+        problems.push("CSS @import".into());
+    }
+    if lower.contains("url(") {
+        problems.push("CSS url(...)".into());
+    }
+    if !tags.iter().any(|t| {
+        t.attr("class")
+            .is_some_and(|c| c.split(' ').any(|x| x == "env"))
+    }) {
+        problems.push("no environment line (class=\"env\")".into());
+    }
+    // Sections per case, and figure contents.
+    let mut cases: Vec<(String, Vec<String>)> = vec![];
+    let mut pending_figure: Option<String> = None;
+    for t in &tags {
+        if let Some(p) = pending_figure.take() {
+            let ok = t.name == "svg"
+                || (t.name == "p" && t.attr("class").is_some_and(|c| c.contains("nodata")));
+            if !ok {
+                problems.push(format!(
+                    "figure {p} has neither an <svg> nor a no-data note"
+                ));
+            }
+        }
+        if t.name == "section"
+            && let Some(c) = t.attr("data-case")
+        {
+            cases.push((c.to_string(), vec![]));
+        }
+        if let Some(sec) = t.attr("data-section")
+            && let Some(last) = cases.last_mut()
+        {
+            last.1.push(sec.to_string());
+        }
+        if t.name == "figure" {
+            pending_figure = Some(t.attr("data-plot").unwrap_or("?").to_string());
+        }
+    }
+    if let Some(p) = pending_figure {
+        problems.push(format!(
+            "figure {p} has neither an <svg> nor a no-data note"
+        ));
+    }
+    if cases.is_empty() && !html.contains("none (no data)") {
+        problems.push("no case section".into());
+    }
+    for (c, secs) in &cases {
+        for req in REQUIRED_SECTIONS {
+            if !secs.iter().any(|s| s == req) {
+                problems.push(format!("case {c}: missing section {req}"));
+            }
+        }
+    }
+    problems
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The tokenizer reads quoted, single-quoted and bare attributes and skips comments.
+    #[test]
+    fn tokenizer() {
+        let t = start_tags("<!-- <img src=x> --><p class=\"a b\" id='q' hidden data-x=1>t</p>");
+        assert_eq!(t.len(), 1);
+        assert_eq!(t[0].name, "p");
+        assert_eq!(t[0].attr("class"), Some("a b"));
+        assert_eq!(t[0].attr("id"), Some("q"));
+        assert_eq!(t[0].attr("hidden"), Some(""));
+        assert_eq!(t[0].attr("data-x"), Some("1"));
+    }
+
+    /// External references and scripts are reported; the SVG namespace declaration is not.
+    #[test]
+    fn finds_external_refs() {
+        let bad = "<p class=\"env\">x</p><a href=\"#x\">a</a><img src=\"a.png\"><script></script>\
+                   <svg xmlns=\"http://www.w3.org/2000/svg\"><image xlink:href=\"b.png\"/></svg>\
+                   <div style=\"background:url(c.png)\"></div>";
+        let p = render_check(bad);
+        let joined = p.join("\n");
+        for want in [
+            "href=\"#x\"",
+            "src=\"a.png\"",
+            "<script>",
+            "xlink:href",
+            "url(",
+        ] {
+            assert!(joined.contains(want), "{want} not reported in {joined}");
+        }
+        assert!(!joined.contains("xmlns"), "{joined}");
+    }
+
+    /// A case without its sections, and a figure without content, are reported.
+    #[test]
+    fn finds_missing_sections() {
+        let html = "<p class=\"env\">e</p><section class=\"case\" data-case=\"c\">\
+                    <div data-section=\"narrative\"></div><figure data-plot=\"p\"><figcaption>x</figcaption></figure></section>";
+        let p = render_check(html);
+        assert!(
+            p.iter().any(|s| s.contains("missing section matrix")),
+            "{p:?}"
+        );
+        assert!(!p.iter().any(|s| s.contains("missing section narrative")));
+        assert!(
+            p.iter().any(|s| s.contains("figure p has neither")),
+            "{p:?}"
+        );
+    }
+}

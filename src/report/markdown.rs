@@ -1,0 +1,140 @@
+//! `summary.md`: the report's text and tables for a CI log or a pull-request comment
+//! (GitHub-flavoured Markdown): the environment line, per case the "what this shows"
+//! paragraph and the same tables as the HTML page (gates, failures, largest completed step,
+//! the matrix of each scene, n/a), long tables folded in `<details>` blocks. No plots: their
+//! SVG files are listed by path. Gate colours become `[pass]` / `[FAIL]` after the value.
+use super::tables::{Table, Tone};
+use super::{CaseSection, Page};
+
+/// Escapes a table cell: pipes, and newlines folded to spaces.
+fn cell(s: &str) -> String {
+    s.replace('|', "\\|").replace(['\n', '\r'], " ")
+}
+
+/// Renders a table (folded when longer than `open_below` rows).
+pub fn table(t: &Table, open_below: usize) -> String {
+    let mut s = format!("#### {}\n\n{}\n\n", t.title, t.note);
+    if t.rows.is_empty() {
+        s.push_str("_no rows_\n\n");
+        return s;
+    }
+    let fold = t.rows.len() > open_below;
+    if fold {
+        s.push_str(&format!(
+            "<details><summary>{} rows</summary>\n\n",
+            t.rows.len()
+        ));
+    }
+    s.push_str(&format!(
+        "| {} |\n",
+        t.header
+            .iter()
+            .map(|h| cell(h))
+            .collect::<Vec<_>>()
+            .join(" | ")
+    ));
+    s.push_str(&format!("|{}\n", "---|".repeat(t.header.len())));
+    for row in &t.rows {
+        let cells: Vec<String> = row
+            .iter()
+            .map(|c| {
+                let mark = match c.tone {
+                    Tone::Pass => " [pass]",
+                    Tone::Fail => " [FAIL]",
+                    Tone::Plain | Tone::Neutral => "",
+                };
+                // The gate table's verdict column already says pass/FAIL.
+                if !mark.is_empty() && (c.text == "pass" || c.text == "FAIL") {
+                    cell(&c.text)
+                } else {
+                    format!("{}{mark}", cell(&c.text))
+                }
+            })
+            .collect();
+        s.push_str(&format!("| {} |\n", cells.join(" | ")));
+    }
+    s.push('\n');
+    if fold {
+        s.push_str("</details>\n\n");
+    }
+    s
+}
+
+fn case_section(c: &CaseSection, env: &str, svg_dir: &str) -> String {
+    let mut s = format!("## {}", c.name);
+    if !c.title.is_empty() {
+        s.push_str(&format!(" — {}", c.title));
+    }
+    s.push_str(&format!("\n\n`{env}`\n\n### What this shows\n\n"));
+    for sentence in &c.narrative {
+        s.push_str(&format!("- {sentence}\n"));
+    }
+    s.push('\n');
+    if let Some(g) = &c.gates {
+        s.push_str(&table(g, 40));
+    }
+    s.push_str(&table(&c.failures, 20));
+    s.push_str(&table(&c.largest, 0));
+    for sc in &c.scenes {
+        s.push_str(&table(&sc.matrix, 0));
+    }
+    s.push_str(&table(&c.na, 20));
+    let n: usize = c.across.len()
+        + c.scenes
+            .iter()
+            .map(|x| x.work_precision.len() + x.convergence.len() + x.timeseries.len())
+            .sum::<usize>();
+    s.push_str(&format!(
+        "Plots ({n}): `{svg_dir}/{}/` and `index.html`.\n\n",
+        c.name
+    ));
+    s
+}
+
+/// The whole document.
+pub fn render(page: &Page) -> String {
+    let mut s = format!(
+        "# mbdbench report\n\n`{}`\n\n{}\n\n",
+        page.env_line,
+        super::KEY_TEXT
+    );
+    if let Some((pass, fail)) = page.gate_summary {
+        s.push_str(&format!("**Gates: {pass} passed, {fail} failed.**\n\n"));
+    }
+    if page.cases.is_empty() {
+        s.push_str("No cases (no data).\n");
+    }
+    for c in &page.cases {
+        s.push_str(&case_section(c, &page.env_line, "svg"));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::tables::Cell;
+
+    /// Cells escape pipes, gated cells carry their verdict, long tables fold.
+    #[test]
+    fn table_format() {
+        let t = Table {
+            kind: "matrix",
+            title: "T".into(),
+            note: "n".into(),
+            header: vec!["a".into(), "b".into()],
+            rows: vec![vec![
+                Cell::plain("x|y"),
+                Cell {
+                    text: "1e-9".into(),
+                    tone: Tone::Fail,
+                },
+            ]],
+        };
+        let s = table(&t, 5);
+        assert!(s.contains("| x\\|y | 1e-9 [FAIL] |"), "{s}");
+        assert!(s.contains("|---|---|"));
+        assert!(!s.contains("<details>"));
+        assert!(table(&t, 0).contains("<details><summary>1 rows</summary>"));
+    }
+}

@@ -1,0 +1,482 @@
+//! The report (design.md, "Reports"): from a summary, its series files, the case files and
+//! optionally the gate's rows, writes `out/index.html` (one self-contained page, every plot an
+//! inline SVG, no external `src`/`href`, no script), `out/summary.md` (the same text and
+//! tables for a CI log or PR comment) and every plot as `out/svg/<case>/[<scene>/]<plot>.svg`.
+//!
+//! Per case: a "what this shows" paragraph computed from the numbers (`narrative`); for a case
+//! with several scenes, error, conditioning and adaptive cost across scenes (`scenes`); per
+//! scene, work-precision (error vs wall time and vs RHS evaluations, `work_precision`),
+//! convergence with the fitted orders (`convergence`), energy drift and constraint residual
+//! over time (`timeseries`), and the variants x metrics matrix; then the failure table, the
+//! largest completed ladder step per variant, and the n/a combinations (`tables`). Colour =
+//! integrator, marker = parameterization, dashed = spatial formulation in every plot
+//! (`style`); log axes carry explicit decade ticks with both end labels (`axes`).
+//!
+//! Robustness: a missing or unreadable series file, an `n/a` record, a null metric or a case
+//! absent from `cases` never stops the report: the affected plot or cell says "no data" (or
+//! `null`, `-`) in place. Only I/O errors writing the output are errors. Every file is written
+//! atomically (`reference::write_atomic`); the page last, after its SVG files.
+pub mod axes;
+pub mod chart;
+pub mod convergence;
+pub mod data;
+pub mod html;
+pub mod markdown;
+pub mod narrative;
+pub mod scenes;
+pub mod select;
+pub mod style;
+pub mod tables;
+pub mod timeseries;
+pub mod work_precision;
+
+use std::path::{Path, PathBuf};
+
+use crate::case::Case;
+use crate::gate::{GateRow, Verdict};
+use crate::summary::Summary;
+
+pub use html::render_check;
+
+/// How to read the plots (page and markdown header).
+pub const KEY_TEXT: &str = "How to read the plots: colour = integrator, marker = \
+    parameterization (triangles: Euler angles; diamonds: rotvec hollow, so3 filled; circles: \
+    quat hollow, quat_proj filled; squares: matrix hollow, matrix_proj filled; x: se3_hq; +: \
+    dual_quat), solid line = body formulation, dashed = spatial. Marks in a red band at the \
+    top of a plot are runs that failed (no value). Log axes are labelled at powers of ten \
+    (1e-6 = 10^-6). Each plot's caption says which variants and which ladder points it draws.";
+
+/// A plot on the page.
+#[derive(Debug, Clone)]
+pub struct Figure {
+    /// Unique within the case (`<scene>/<plot>` or `<plot>`): the `data-plot` attribute and
+    /// the SVG file's path under `svg/<case>/`.
+    pub kind: String,
+    pub title: String,
+    pub caption: String,
+    pub body: chart::Rendered,
+}
+
+/// One scene of a case section.
+#[derive(Debug, Clone)]
+pub struct SceneSection {
+    pub name: String,
+    pub work_precision: Vec<Figure>,
+    pub convergence: Vec<Figure>,
+    pub timeseries: Vec<Figure>,
+    pub matrix: tables::Table,
+}
+
+/// One case of the page.
+#[derive(Debug, Clone)]
+pub struct CaseSection {
+    pub name: String,
+    pub title: String,
+    pub narrative: Vec<String>,
+    pub across: Vec<Figure>,
+    pub scenes: Vec<SceneSection>,
+    pub failures: tables::Table,
+    pub largest: tables::Table,
+    pub gates: Option<tables::Table>,
+    pub na: tables::Table,
+}
+
+/// The whole report as data (rendered by `html` and `markdown`).
+#[derive(Debug, Clone)]
+pub struct Page {
+    /// Commit, date, rustc, CPU, OS, profile, threads.
+    pub env_line: String,
+    pub cases: Vec<CaseSection>,
+    /// (passed, failed) gate rows, when gate rows were given.
+    pub gate_summary: Option<(usize, usize)>,
+}
+
+/// The files written.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReportFiles {
+    pub index_html: PathBuf,
+    pub summary_md: PathBuf,
+    pub svgs: Vec<PathBuf>,
+}
+
+/// Why the report could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportError {
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+}
+
+/// The environment line of a summary.
+pub fn env_line(s: &Summary) -> String {
+    format!(
+        "commit {} | {} | {} | CPU {} | {} | {} build, {} threads",
+        s.git_commit, s.created_utc, s.env.rustc, s.env.cpu, s.env.os, s.env.profile, s.env.threads
+    )
+}
+
+fn footer(s: &Summary) -> String {
+    format!(
+        "mbdbench {} | {} | {} | {} | {}",
+        s.git_commit, s.created_utc, s.env.rustc, s.env.cpu, s.env.os
+    )
+}
+
+fn figure(p: &chart::Plot) -> Figure {
+    let body = match chart::render(p) {
+        Ok(r) => r,
+        Err(e) => {
+            chart::Rendered::NoData(format!("no data: the plot could not be drawn ({})", e.0))
+        }
+    };
+    Figure {
+        kind: p.id.clone(),
+        title: p.title.clone(),
+        caption: p.caption.clone(),
+        body,
+    }
+}
+
+/// Builds the page from a summary (no I/O other than reading series files).
+pub fn build_page(
+    summary: &Summary,
+    series_root: &Path,
+    cases: &[Case],
+    gate_rows: Option<&[GateRow]>,
+) -> Page {
+    let foot = footer(summary);
+    let views = data::case_views(summary, cases);
+    let sections = views
+        .iter()
+        .map(|cv| {
+            let scenes = cv
+                .scenes
+                .iter()
+                .map(|sv| SceneSection {
+                    name: sv.name.clone(),
+                    work_precision: work_precision::plots(cv, sv, &foot)
+                        .iter()
+                        .map(figure)
+                        .collect(),
+                    convergence: convergence::plots(cv, sv, &foot)
+                        .iter()
+                        .map(figure)
+                        .collect(),
+                    timeseries: timeseries::plots(cv, sv, series_root, &foot)
+                        .iter()
+                        .map(figure)
+                        .collect(),
+                    matrix: tables::matrix(cv, sv, gate_rows),
+                })
+                .collect();
+            CaseSection {
+                name: cv.name.clone(),
+                title: cv.title.clone(),
+                narrative: narrative::paragraph(cv),
+                across: scenes::plots(cv, &foot).iter().map(figure).collect(),
+                scenes,
+                failures: tables::failures(cv),
+                largest: tables::largest_step(cv),
+                gates: tables::gate_table(cv, gate_rows),
+                na: tables::not_applicable(cv),
+            }
+        })
+        .collect();
+    let gate_summary = gate_rows.map(|g| {
+        let fail = g.iter().filter(|r| r.verdict == Verdict::Fail).count();
+        (g.len() - fail, fail)
+    });
+    Page {
+        env_line: env_line(summary),
+        cases: sections,
+        gate_summary,
+    }
+}
+
+/// A path component made of `[A-Za-z0-9_.-]` (anything else becomes `_`; `..` cannot occur).
+fn safe(component: &str) -> String {
+    let s: String = component
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() || s.chars().all(|c| c == '.') {
+        "_".into()
+    } else {
+        s
+    }
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
+    crate::reference::write_atomic(path, bytes).map_err(|source| ReportError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Writes `out/index.html`, `out/summary.md` and `out/svg/<case>/...svg`.
+///
+/// `series_root` is the directory of the series files (`<summary dir>/series`, holding
+/// `<case>/<scene>/<id>.json`; the summary's directory also works). `gate_rows`, when given,
+/// colour the matrices and add a gate table per case.
+pub fn write_report(
+    summary: &Summary,
+    series_root: &Path,
+    cases: &[Case],
+    gate_rows: Option<&[GateRow]>,
+    out: &Path,
+) -> Result<ReportFiles, ReportError> {
+    let page = build_page(summary, series_root, cases, gate_rows);
+    let mut svgs = vec![];
+    for c in &page.cases {
+        let figs = c.across.iter().chain(c.scenes.iter().flat_map(|s| {
+            s.work_precision
+                .iter()
+                .chain(&s.convergence)
+                .chain(&s.timeseries)
+        }));
+        for f in figs {
+            let chart::Rendered::Svg(svg) = &f.body else {
+                continue;
+            };
+            let mut path = out.join("svg").join(safe(&c.name));
+            for part in f.kind.split('/') {
+                path.push(safe(part));
+            }
+            path.set_extension("svg");
+            write(&path, svg.as_bytes())?;
+            svgs.push(path);
+        }
+    }
+    let summary_md = out.join("summary.md");
+    write(&summary_md, markdown::render(&page).as_bytes())?;
+    let index_html = out.join("index.html");
+    write(&index_html, html::render(&page).as_bytes())?;
+    Ok(ReportFiles {
+        index_html,
+        summary_md,
+        svgs,
+    })
+}
+
+#[cfg(test)]
+mod fixture;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gate::{GateRow, Verdict};
+
+    /// Plots per scene (6 work-precision, 2 convergence, 4 time series) and across scenes.
+    const PER_SCENE: usize = 12;
+    const ACROSS: usize = 3;
+
+    fn case_html<'a>(html: &'a str, case: &str) -> &'a str {
+        let start = html
+            .find(&format!("<section class=\"case\" data-case=\"{case}\""))
+            .expect("case section");
+        let end = html[start..].find("</section>").unwrap() + start;
+        &html[start..end]
+    }
+
+    /// The page is self-contained (no src/href attribute, no script), holds one inline SVG per
+    /// expected plot of the case, the tables and the environment line; every SVG is also a
+    /// file; the markdown has the same tables.
+    #[test]
+    fn page_is_self_contained_and_complete() {
+        let s = fixture::summary();
+        let dir = fixture::temp_dir("complete");
+        fixture::write_series(&dir.join("series"), &s, |_| false);
+        let cases = crate::case::embedded().unwrap();
+        let out = dir.join("report");
+        let files = write_report(&s, &dir.join("series"), &cases, None, &out).unwrap();
+        let html = std::fs::read_to_string(&files.index_html).unwrap();
+        assert_eq!(render_check(&html), Vec::<String>::new());
+        for t in html::start_tags(&html) {
+            for (n, _) in &t.attrs {
+                assert!(
+                    n != "src" && n != "href" && !n.ends_with(":href"),
+                    "<{}> {n}",
+                    t.name
+                );
+            }
+        }
+        assert!(!html.contains(" src=") && !html.contains(" href="));
+        let sec = case_html(&html, fixture::CASE);
+        let expected = fixture::SCENES.len() * PER_SCENE + ACROSS;
+        assert_eq!(sec.matches("<svg").count(), expected);
+        assert_eq!(sec.matches("<figure").count(), expected);
+        assert_eq!(files.svgs.len(), expected);
+        assert!(files.svgs.iter().all(|p| p.is_file()));
+        assert!(
+            out.join("svg/nine_spring/large/wp_wall_rk4.svg").is_file(),
+            "{:?}",
+            files.svgs
+        );
+        for kind in html::REQUIRED_SECTIONS
+            .iter()
+            .chain(&["na", "across-scenes"])
+        {
+            assert!(sec.contains(&format!("data-section=\"{kind}\"")), "{kind}");
+        }
+        let env = env_line(&s);
+        for part in [
+            "abc1234",
+            "2026-01-02T03:04:05Z",
+            "rustc 1.95.0",
+            "Test CPU",
+            "Test OS",
+        ] {
+            assert!(env.contains(part), "{part}");
+        }
+        assert!(
+            sec.contains(&html::esc(&env)),
+            "env line in the case section"
+        );
+        let md = std::fs::read_to_string(&files.summary_md).unwrap();
+        assert!(md.contains(&env));
+        for title in [
+            "nine_spring: failed runs",
+            "nine_spring: largest completed ladder step",
+            "nine_spring / two_angles: variants x metrics",
+            "nine_spring / large: variants x metrics",
+            "nine_spring: not applicable",
+        ] {
+            assert!(md.contains(title), "{title}");
+            assert!(html.contains(title), "{title}");
+        }
+        // The failing Euler run shows in the failure table with its kind and times.
+        assert!(md.contains("| large | euler_zxz | rk4 | body | dt 2e-2, 1e-2, 5e-3 | singular_chart | 0.5, 0.6, 0.7 |"), "{md}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Failed and n/a records, missing series files and a case file that was not given still
+    /// give a complete page: the time series say "no data" in place.
+    #[test]
+    fn failed_na_and_missing_series_render() {
+        let s = fixture::summary();
+        let dir = fixture::temp_dir("missing");
+        let out = dir.join("report");
+        // No series at all, and no case files.
+        let files = write_report(&s, &dir.join("nowhere"), &[], None, &out).unwrap();
+        let html = std::fs::read_to_string(&files.index_html).unwrap();
+        assert_eq!(render_check(&html), Vec::<String>::new());
+        let sec = case_html(&html, fixture::CASE);
+        let timeseries = fixture::SCENES.len() * 4;
+        assert_eq!(
+            sec.matches("<figure").count(),
+            fixture::SCENES.len() * PER_SCENE + ACROSS
+        );
+        assert_eq!(sec.matches("<p class=\"nodata\">").count(), timeseries);
+        assert_eq!(
+            sec.matches("<svg").count(),
+            fixture::SCENES.len() * PER_SCENE + ACROSS - timeseries
+        );
+        assert!(sec.contains("no series file"));
+        assert!(sec.contains("written on SO(3) x R^3 (chart so3) only"));
+        // Only one scene's series present: that scene's time series are drawn.
+        fixture::write_series(&dir.join("series"), &s, |r| r.scene == "large");
+        let files = write_report(&s, &dir.join("series"), &[], None, &out).unwrap();
+        let html = std::fs::read_to_string(&files.index_html).unwrap();
+        assert_eq!(
+            case_html(&html, fixture::CASE)
+                .matches("<p class=\"nodata\">")
+                .count(),
+            4
+        );
+        // An empty summary.
+        let mut empty = s.clone();
+        empty.records.clear();
+        empty.fits.clear();
+        let files = write_report(&empty, &dir.join("series"), &[], None, &out).unwrap();
+        let html = std::fs::read_to_string(&files.index_html).unwrap();
+        assert_eq!(render_check(&html), Vec::<String>::new());
+        assert!(html.contains("none (no data)"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    fn gate(scene: &str, dt: f64, metric: &str, verdict: Verdict) -> GateRow {
+        GateRow {
+            case: fixture::CASE.into(),
+            scene: scene.into(),
+            param: "so3".into(),
+            integrator: "rk4".into(),
+            formulation: "body".into(),
+            dt: Some(dt),
+            tol: None,
+            metric: metric.into(),
+            value: Some(1.0),
+            threshold: "<= 1".into(),
+            verdict,
+            note: String::new(),
+        }
+    }
+
+    /// Gated cells are coloured by verdict (a gated run at a coarser step gets its own row),
+    /// other cells neutral; the gate table and the markdown marks agree.
+    #[test]
+    fn gate_colours() {
+        let s = fixture::summary();
+        let dir = fixture::temp_dir("gates");
+        let rows = vec![
+            gate("two_angles", 5e-3, fixture::PRIMARY, Verdict::Pass),
+            gate("two_angles", 2e-2, "energy_drift_max", Verdict::Fail),
+        ];
+        let page = build_page(&s, &dir, &[], Some(&rows));
+        let c = &page.cases[0];
+        // Without the case file, scenes sort by name: large, two_angles.
+        assert_eq!(c.scenes[1].name, "two_angles");
+        let m = &c.scenes[1].matrix;
+        let so3_rk4_body: Vec<&Vec<tables::Cell>> = m
+            .rows
+            .iter()
+            .filter(|r| r[0].text == "so3" && r[1].text == "rk4" && r[2].text == "body")
+            .collect();
+        assert_eq!(
+            so3_rk4_body.len(),
+            2,
+            "finest row plus the gated coarse row"
+        );
+        let col = |name: &str| m.header.iter().position(|h| h == name).unwrap();
+        assert_eq!(so3_rk4_body[0][3].text, "dt 5e-3");
+        assert_eq!(
+            so3_rk4_body[0][col(fixture::PRIMARY)].tone,
+            tables::Tone::Pass
+        );
+        assert_eq!(
+            so3_rk4_body[0][col("energy_drift_max")].tone,
+            tables::Tone::Neutral
+        );
+        assert_eq!(so3_rk4_body[1][3].text, "dt 2e-2");
+        assert_eq!(
+            so3_rk4_body[1][col("energy_drift_max")].tone,
+            tables::Tone::Fail
+        );
+        assert_eq!(page.gate_summary, Some((1, 1)));
+        let g = c.gates.as_ref().unwrap();
+        assert_eq!(g.rows.len(), 2);
+        let html = html::render(&page);
+        assert!(html.contains("<td class=\"pass\">") && html.contains("<td class=\"fail\">"));
+        let md = markdown::render(&page);
+        assert!(md.contains("[pass]") && md.contains("[FAIL]"));
+        assert!(md.contains("Gates: 1 passed, 1 failed."));
+        // Without gate rows nothing is coloured.
+        let plain = build_page(&s, &dir, &[], None);
+        assert!(
+            plain.cases[0].scenes[0]
+                .matrix
+                .rows
+                .iter()
+                .flatten()
+                .all(|c| c.tone == tables::Tone::Plain)
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

@@ -1,0 +1,133 @@
+//! The report's visual encoding, fixed across every plot so a variant looks the same
+//! everywhere: colour = integrator, marker = parameterization, line pattern = formulation
+//! (`body` solid, `spatial` dashed).
+//!
+//! The markers are grouped by family so a reader can tell the chart type at a glance:
+//! triangles for the three Euler-angle charts, diamonds for the rotation vector (hollow) and
+//! the SO(3) group chart (filled), circles for quaternions and squares for matrices (hollow:
+//! additive, no projection; filled: projected after each step), a cross and a plus for the
+//! two SE(3) charts. Colours follow the order of `registry::INTEGRATORS` (a categorical
+//! palette chosen for contrast on white). A name the registry does not know (a later issue's
+//! method) gets a colour/marker from a hash of its name: stable, but possibly shared.
+use plotters::style::RGBColor;
+
+use crate::registry;
+
+/// The integrator colours, in `registry::INTEGRATORS` order.
+const INTEGRATOR_COLOURS: [RGBColor; 12] = [
+    RGBColor(127, 127, 127), // euler: grey
+    RGBColor(31, 119, 180),  // rk4: blue
+    RGBColor(255, 127, 14),  // dopri5: orange
+    RGBColor(214, 39, 40),   // dop853: red
+    RGBColor(44, 160, 44),   // implicit_midpoint: green
+    RGBColor(148, 103, 189), // gauss6: purple
+    RGBColor(140, 86, 75),   // lie_euler: brown
+    RGBColor(227, 119, 194), // cg3: pink
+    RGBColor(23, 190, 207),  // splitting: cyan
+    RGBColor(188, 189, 34),  // lgvi: olive
+    RGBColor(0, 0, 0),       // simo_wong: black
+    RGBColor(57, 59, 121),   // lie_gen_alpha: indigo
+];
+
+/// Extra colours for integrators the registry does not list.
+const SPARE_COLOURS: [RGBColor; 4] = [
+    RGBColor(255, 187, 120),
+    RGBColor(152, 223, 138),
+    RGBColor(197, 176, 213),
+    RGBColor(196, 156, 148),
+];
+
+/// A marker shape.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Marker {
+    TriangleUp,
+    TriangleDown,
+    TriangleRight,
+    DiamondHollow,
+    DiamondFilled,
+    CircleHollow,
+    CircleFilled,
+    SquareHollow,
+    SquareFilled,
+    Cross,
+    Plus,
+    TriangleUpHollow,
+}
+
+/// The parameterization markers, in `registry::PARAMS` order.
+const PARAM_MARKERS: [Marker; 11] = [
+    Marker::TriangleUp,    // euler_xyz
+    Marker::TriangleDown,  // euler_zyx
+    Marker::TriangleRight, // euler_zxz
+    Marker::DiamondHollow, // rotvec
+    Marker::CircleHollow,  // quat
+    Marker::CircleFilled,  // quat_proj
+    Marker::SquareHollow,  // matrix
+    Marker::SquareFilled,  // matrix_proj
+    Marker::DiamondFilled, // so3
+    Marker::Cross,         // se3_hq
+    Marker::Plus,          // dual_quat
+];
+
+fn hash(name: &str) -> usize {
+    // FNV-1a: deterministic across runs and platforms.
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in name.bytes() {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    h as usize
+}
+
+/// The colour of an integrator.
+pub fn colour(integrator: &str) -> RGBColor {
+    match registry::INTEGRATORS.iter().position(|x| *x == integrator) {
+        Some(i) if i < INTEGRATOR_COLOURS.len() => INTEGRATOR_COLOURS[i],
+        _ => SPARE_COLOURS[hash(integrator) % SPARE_COLOURS.len()],
+    }
+}
+
+/// The marker of a parameterization.
+pub fn marker(param: &str) -> Marker {
+    match registry::PARAMS.iter().position(|x| *x == param) {
+        Some(i) if i < PARAM_MARKERS.len() => PARAM_MARKERS[i],
+        _ => Marker::TriangleUpHollow,
+    }
+}
+
+/// Whether a formulation's lines are dashed (`spatial`; `body` and unknown ones are solid).
+pub fn dashed(formulation: &str) -> bool {
+    formulation == "spatial"
+}
+
+/// `#rrggbb`.
+pub fn hex(c: RGBColor) -> String {
+    format!("#{:02x}{:02x}{:02x}", c.0, c.1, c.2)
+}
+
+/// The colour used for neutral ink (axes, legend markers of the parameterization key).
+pub const INK: RGBColor = RGBColor(60, 60, 60);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every registered integrator has its own colour and every parameterization its own marker.
+    #[test]
+    fn distinct_encodings() {
+        let cs: Vec<_> = registry::INTEGRATORS.iter().map(|i| colour(i)).collect();
+        for (i, a) in cs.iter().enumerate() {
+            for b in &cs[i + 1..] {
+                assert_ne!(a, b);
+            }
+        }
+        let ms: Vec<_> = registry::PARAMS.iter().map(|p| marker(p)).collect();
+        for (i, a) in ms.iter().enumerate() {
+            for b in &ms[i + 1..] {
+                assert_ne!(a, b);
+            }
+        }
+        assert!(dashed("spatial") && !dashed("body"));
+        assert_eq!(colour("not_a_method"), colour("not_a_method"));
+    }
+}

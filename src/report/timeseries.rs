@@ -1,0 +1,181 @@
+//! Invariants over time, from the per-run series files (values at the scene's `score_every`
+//! times): the relative energy drift `|E(t) - E0| / max(|E0|, energy_scale)` (design.md,
+//! "Files": the same normalisation as `energy_drift_max`) and the chart's own constraint
+//! residual (`||q|^2 - 1|`, `|R^T R - I|`, the dual quaternion's two; none for minimal charts),
+//! both on a log axis against linear time.
+//!
+//! Which run of a variant: its coarsest *completed* ladder point (largest `dt`, loosest
+//! `tol`), where drift and residual are largest and furthest above round-off; the caption
+//! lists the steps used. A symplectic or energy-momentum method shows a bounded energy error,
+//! a non-symplectic one a secular drift; an additive chart without projection shows its
+//! constraint residual growing. Exact zeros (e.g. the drift at t = 0) cannot be drawn on a log
+//! axis and are left out. A variant with no completed run or no series file has no line and
+//! is named in the caption.
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use super::chart::{Legend, Line, Plot};
+use super::data::{self, CaseView, SceneView};
+use super::select::Selection;
+
+/// Which invariant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    Energy,
+    Constraint,
+}
+
+/// The time-series plots of a scene: energy drift and constraint residual for the rk4 and
+/// so3 selections.
+pub fn plots(cv: &CaseView, sv: &SceneView, series_root: &Path, footer: &str) -> Vec<Plot> {
+    let mut out = vec![];
+    for q in [Quantity::Energy, Quantity::Constraint] {
+        for sel in [Selection::Rk4, Selection::So3] {
+            out.push(plot(cv, sv, series_root, q, sel, footer));
+        }
+    }
+    out
+}
+
+/// The relative energy drift of a series.
+pub fn energy_drift(energy: &[f64], energy_scale: Option<f64>) -> Vec<f64> {
+    let Some(&e0) = energy.first() else {
+        return vec![];
+    };
+    let denom = e0.abs().max(energy_scale.unwrap_or(0.0));
+    energy
+        .iter()
+        .map(|e| {
+            if denom > 0.0 {
+                (e - e0).abs() / denom
+            } else {
+                (e - e0).abs()
+            }
+        })
+        .collect()
+}
+
+/// One time-series plot.
+pub fn plot(
+    cv: &CaseView,
+    sv: &SceneView,
+    series_root: &Path,
+    q: Quantity,
+    sel: Selection,
+    footer: &str,
+) -> Plot {
+    let mut lines = vec![];
+    let mut steps: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    let mut missing: Vec<String> = vec![];
+    let mut unconstrained: Vec<String> = vec![];
+    for v in sv.variants.iter().filter(|v| sel.admits(v)) {
+        let Some(r) = v.coarsest_ok() else {
+            missing.push(format!("{} (no completed run)", v.key.label()));
+            continue;
+        };
+        let Some(s) = data::load_series(series_root, r) else {
+            missing.push(format!("{} (no series file)", v.key.label()));
+            continue;
+        };
+        let ys: Vec<Option<f64>> = match q {
+            Quantity::Energy => energy_drift(&s.energy, cv.energy_scale)
+                .into_iter()
+                .map(Some)
+                .collect(),
+            Quantity::Constraint => s.constraint.clone(),
+        };
+        if q == Quantity::Constraint && ys.iter().all(Option::is_none) {
+            if !unconstrained.contains(&v.key.param) {
+                unconstrained.push(v.key.param.clone());
+            }
+            continue;
+        }
+        let points: Vec<(f64, f64)> =
+            s.t.iter()
+                .zip(ys)
+                .filter_map(|(t, y)| y.map(|y| (*t, y)))
+                .collect();
+        let label = data::step_label(r);
+        let e = steps.entry(label).or_default();
+        if !e.contains(&v.key.integrator) {
+            e.push(v.key.integrator.clone());
+        }
+        let n = points.len();
+        lines.push(Line {
+            key: v.key.clone(),
+            points,
+            label: None,
+            marker_every: (n / 8).max(1),
+        });
+    }
+    let used: Vec<String> = steps
+        .iter()
+        .map(|(step, integ)| format!("{step} ({})", integ.join(", ")))
+        .collect();
+    let mut caption = match q {
+        Quantity::Energy => format!(
+            "Relative energy drift |E(t) - E0| / max(|E0|, {}) at the score times. ",
+            cv.energy_scale.map(data::num).unwrap_or_else(|| "0".into())
+        ),
+        Quantity::Constraint => {
+            "The chart's own constraint residual (||q|^2 - 1| for quaternions, |R^T R - I| for \
+             matrices, the dual quaternion's two) at the score times. "
+                .to_string()
+        }
+    };
+    caption.push_str(sel.describe());
+    caption.push_str(&format!(
+        " Each variant at its coarsest completed ladder point: {}.",
+        if used.is_empty() {
+            "none".to_string()
+        } else {
+            used.join("; ")
+        }
+    ));
+    if !unconstrained.is_empty() {
+        caption.push_str(&format!(
+            " No residual (minimal charts): {}.",
+            unconstrained.join(", ")
+        ));
+    }
+    if !missing.is_empty() {
+        caption.push_str(&format!(" No data: {}.", missing.join("; ")));
+    }
+    let (id, name, y_label) = match q {
+        Quantity::Energy => ("energy", "energy drift", "|E - E0| / max(|E0|, E_scale)"),
+        Quantity::Constraint => ("constraint", "constraint residual", "constraint residual"),
+    };
+    Plot {
+        id: format!("{}/{id}_{}", sv.name, sel.id()),
+        title: format!(
+            "{}/{}: {name} over time ({})",
+            cv.name,
+            sv.name,
+            sel.short()
+        ),
+        x_label: "t (s)".into(),
+        y_label: y_label.into(),
+        x: super::axes::Scale::Linear,
+        y: super::axes::Scale::Log,
+        lines,
+        fails: vec![],
+        legend: Legend::Factored,
+        caption,
+        footer: footer.into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The drift is relative to max(|E0|, scale) and exactly zero at t = 0.
+    #[test]
+    fn drift_normalisation() {
+        let d = energy_drift(&[-2.0, -2.5, -1.0], Some(4.0));
+        assert_eq!(d, vec![0.0, 0.125, 0.25]);
+        let d = energy_drift(&[10.0, 11.0], Some(1.0));
+        assert_eq!(d, vec![0.0, 0.1]);
+        assert!(energy_drift(&[], None).is_empty());
+    }
+}
