@@ -54,6 +54,15 @@ pub enum Command {
     Trajectory(TrajectoryArgs),
     /// Evaluate the cases' [[gates]] against a summary; table, exit 0/1 (2: bad input).
     Gate(GateArgs),
+    /// HTML + SVG + markdown report from a summary.
+    Report {
+        /// The summary (its series files are read from `series/` beside it).
+        #[arg(long, default_value = "reports/latest/summary.json")]
+        summary: PathBuf,
+        /// Output folder (default: the summary's folder).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Regenerate a stored reference, or (--check) recompute and compare.
     Reference {
         #[arg(long)]
@@ -65,7 +74,7 @@ pub enum Command {
     },
 }
 
-#[derive(Debug, Args, Clone, Default)]
+#[derive(Debug, Args, Clone)]
 pub struct RunArgs {
     #[command(flatten)]
     pub filters: Filters,
@@ -81,6 +90,19 @@ pub struct RunArgs {
     /// Override every selected scene's horizon (errors against references are then absent).
     #[arg(long = "t-end")]
     pub t_end: Option<f64>,
+}
+
+/// The main job's run: everything, full ladders, into `reports/latest`.
+impl Default for RunArgs {
+    fn default() -> Self {
+        RunArgs {
+            filters: Filters::default(),
+            quick: false,
+            jobs: None,
+            out: PathBuf::from("reports/latest"),
+            t_end: None,
+        }
+    }
 }
 
 #[derive(Debug, Args, Clone)]
@@ -163,11 +185,18 @@ fn jobs_or_default(j: Option<usize>) -> usize {
 pub fn execute(cli: Cli) -> i32 {
     let common = cli.common.clone();
     let result = match cli.command {
-        None => cmd_run(&common, &RunArgs::default()),
+        None => cmd_run(&common, &RunArgs::default()).and_then(|code| {
+            if code != EXIT_OK {
+                return Ok(code);
+            }
+            let summary = RunArgs::default().out.join("summary.json");
+            cmd_report(&common, &summary, None)
+        }),
         Some(Command::List { json }) => cmd_list(&common, json),
         Some(Command::Run(a)) => cmd_run(&common, &a),
         Some(Command::Trajectory(a)) => cmd_trajectory(&common, &a),
         Some(Command::Gate(a)) => cmd_gate(&common, &a),
+        Some(Command::Report { summary, out }) => cmd_report(&common, &summary, out.as_deref()),
         Some(Command::Reference { case, scene, check }) => {
             cmd_reference(&common, &case, scene.as_deref(), check)
         }
@@ -334,6 +363,48 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
         summary.records.len() - runs,
         t0.elapsed().as_secs_f64(),
         opts.out.join("summary.json").display()
+    );
+    Ok(EXIT_OK)
+}
+
+/// Writes the report of the summary at `summary_path` into `out` (default: beside it), with
+/// the cells of gated runs coloured by the gates (full tier; rows without a record are left
+/// uncoloured, so a quick summary colours what it has).
+fn cmd_report(
+    common: &Common,
+    summary_path: &std::path::Path,
+    out: Option<&std::path::Path>,
+) -> Result<i32, String> {
+    let cases = load_cases(common)?;
+    let summary = crate::gate::load_summary(summary_path).map_err(|e| e.to_string())?;
+    let dir = summary_path
+        .parent()
+        .map(|p| p.to_path_buf())
+        .unwrap_or_else(|| PathBuf::from("."));
+    let out = out.map(|p| p.to_path_buf()).unwrap_or_else(|| dir.clone());
+    let opts =
+        crate::gate::GateOptions::new(common.references.clone().unwrap_or_else(default_references));
+    let rows = match crate::gate::evaluate(&cases, &summary, None, &opts) {
+        Ok(rows) => Some(
+            rows.into_iter()
+                .filter(|r| r.value.is_some() || !r.note.contains("no record"))
+                .collect::<Vec<_>>(),
+        ),
+        Err(e) => {
+            eprintln!("warning: gates not evaluated for the report: {e}");
+            None
+        }
+    };
+    let t0 = std::time::Instant::now();
+    let files =
+        crate::report::write_report(&summary, &dir.join("series"), &cases, rows.as_deref(), &out)
+            .map_err(|e| e.to_string())?;
+    println!(
+        "report: {} ({} SVGs, {} ) in {:.1} s",
+        files.index_html.display(),
+        files.svgs.len(),
+        files.summary_md.display(),
+        t0.elapsed().as_secs_f64()
     );
     Ok(EXIT_OK)
 }
