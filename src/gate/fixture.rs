@@ -1,5 +1,6 @@
-//! Test fixture of the gate: `nine_spring` with gates appended to its real case text, and a
-//! synthetic summary whose records carry the real current physics and reference hashes.
+//! Test fixture of the gate: `nine_spring` with the fixture's gates in place of the real
+//! case file's own (so the tests do not depend on the catalogue's gates), and a synthetic
+//! summary whose records carry the real current physics and reference hashes.
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -44,10 +45,11 @@ pub fn source(name: &str) -> &'static str {
         .unwrap()
 }
 
-/// An embedded case with `gates` appended to its text.
+/// An embedded case with its own gates replaced by `gates`.
 pub fn with_gates(name: &str, gates: &str) -> Case {
     let label = format!("cases/{name}.toml");
-    case::load_str(&label, &format!("{}\n{gates}", source(name))).unwrap()
+    let bare = case::without_gates(source(name));
+    case::load_str(&label, &format!("{bare}\n{gates}")).unwrap()
 }
 
 /// `nine_spring` with `GATES`.
