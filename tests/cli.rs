@@ -31,6 +31,16 @@ fn cases_with(tag: &str, file: &str, edit: impl Fn(&str) -> String) -> PathBuf {
     d
 }
 
+/// `text` with `old` replaced by `new`; `old` must occur (a fixture that silently stops
+/// matching the case file would test nothing).
+fn replace_once(text: &str, old: &str, new: &str) -> String {
+    assert!(
+        text.contains(old),
+        "the case file no longer contains `{old}`"
+    );
+    text.replacen(old, new, 1)
+}
+
 fn expect_bad_input(dir: &Path, key: &str, what: &str) {
     let out = dir.join("out");
     let o = run(&[
@@ -97,8 +107,7 @@ fn bad_case_files_exit_2_naming_file_and_key() {
     ];
     for (i, (what, from, to, key)) in cases.iter().enumerate() {
         let dir = cases_with(&format!("bad{i}"), "nine_spring.toml", |t| {
-            assert!(t.contains(from), "{what}: pattern not in the case file");
-            t.replacen(from, to, 1)
+            replace_once(t, from, to)
         });
         expect_bad_input(&dir, key, what);
         let _ = std::fs::remove_dir_all(&dir);
@@ -165,7 +174,9 @@ fn missing_and_stale_references_exit_2() {
 #[test]
 fn diverging_and_over_budget_runs_are_typed_failures() {
     let dir = cases_with("diverge", "nine_spring.toml", |t| {
-        t.replacen("order1 = [2.0e-5, 1.0e-5, 5.0e-6]", "order1 = [1.0e-1]", 1)
+        // The case-wide order-1 ladder and the `large` scene's own override.
+        let t = replace_once(t, "order1 = [2.0e-5, 1.0e-5, 5.0e-6]", "order1 = [1.0e-1]");
+        replace_once(&t, "ladders = { order1 = [2.0e-5, 1.0e-5] }", "")
     });
     let out = dir.join("out");
     let o = run(&[
@@ -202,10 +213,10 @@ fn diverging_and_over_budget_runs_are_typed_failures() {
     assert_eq!(rk4_ok, 48, "the other runs completed");
 
     let dir2 = cases_with("budget", "nine_spring.toml", |t| {
-        t.replacen(
+        replace_once(
+            t,
             "reference = \"numerical\"",
             "reference = \"numerical\"\nmax_steps = 2000000",
-            1,
         )
     });
     let o = run(&[
