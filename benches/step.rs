@@ -85,7 +85,7 @@ fn bench_steps(c: &mut Criterion) {
                 }
             };
             let mut s = p.setup.clone();
-            s.observe = false;
+            s.observe = mbdbench::run::Observe::Final;
             s.grid = Grid {
                 t_end,
                 sample_every: t_end,

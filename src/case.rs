@@ -148,6 +148,21 @@ pub struct Case {
     pub springs: Vec<SpringSpec>,
     pub scenes: Vec<Scene>,
     pub gates: Vec<Gate>,
+    /// `[stability]`: the stability study's settings (None: the case is not in the study).
+    pub stability: Option<StabilitySpec>,
+}
+
+/// `[stability]` (issue 4, `mbdbench stability`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StabilitySpec {
+    /// The horizon `t_h` in periods of the scene's fastest linearised mode
+    /// (`model::linear_modes`).
+    pub periods: f64,
+    /// rad: the accuracy bound of `largest_accurate_dt` (max geodesic rotation error over the
+    /// score times of the horizon).
+    pub rotation_error_max: f64,
+    /// Scenes of the quick tier (each names a scene of the case).
+    pub quick: Vec<String>,
 }
 
 /// `[body]`.
@@ -639,6 +654,16 @@ struct RawCase {
     ladders: RawLadders,
     #[serde(default)]
     gates: Vec<RawGate>,
+    stability: Option<RawStability>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawStability {
+    periods: f64,
+    rotation_error_max: f64,
+    #[serde(default)]
+    quick: Vec<String>,
 }
 
 #[derive(Deserialize)]
@@ -1077,6 +1102,10 @@ impl Ctx<'_> {
             .enumerate()
             .map(|(i, g)| self.gate(i, g, &scenes))
             .collect::<Res<Vec<_>>>()?;
+        let stability = raw
+            .stability
+            .map(|st| self.stability(st, &scenes))
+            .transpose()?;
         Ok(Case {
             file: self.file.to_string(),
             name: raw.case,
@@ -1092,6 +1121,29 @@ impl Ctx<'_> {
             springs,
             scenes,
             gates,
+            stability,
+        })
+    }
+
+    fn stability(&self, st: RawStability, scenes: &[Scene]) -> Res<StabilitySpec> {
+        let periods = self.positive("stability.periods", st.periods, "a number of periods")?;
+        let rotation_error_max = self.positive(
+            "stability.rotation_error_max",
+            st.rotation_error_max,
+            "a rotation error bound in rad",
+        )?;
+        for (i, name) in st.quick.iter().enumerate() {
+            if !scenes.iter().any(|s| &s.name == name) {
+                return self.err(
+                    format!("stability.quick[{i}]"),
+                    format!("`{name}` is no scene of this case"),
+                );
+            }
+        }
+        Ok(StabilitySpec {
+            periods,
+            rotation_error_max,
+            quick: st.quick,
         })
     }
 
@@ -1363,6 +1415,17 @@ impl Ctx<'_> {
                 (AngularInit::MomentumBody(l), w)
             }
         };
+        // Finite inputs can still give a non-finite body rate (`J^-1 L` with a near-singular
+        // inertia, `R0^T w` near the largest double): name the key it came from.
+        if !omega0.iter().all(|x| x.is_finite()) {
+            return self.err(
+                key(given.first().map_or("omega", |g| g.0)),
+                format!(
+                    "gives the body angular velocity {:?}; expected one that is finite",
+                    omega0.as_slice()
+                ),
+            );
+        }
         let t_end = self.positive(&key("t_end"), s.t_end, "a horizon in s")?;
         let sample_every = self.positive(&key("sample_every"), s.sample_every, "a time in s")?;
         let score_every = self.positive(&key("score_every"), s.score_every, "a time in s")?;
@@ -1900,6 +1963,33 @@ mod tests {
             ),
             "scene[1].euler_xyz[1]",
         );
+    }
+
+    // Finite inputs whose derived body rate overflows (found by tests/fuzz.rs) are an error
+    // naming the angular key, not a case whose omega0 is infinite.
+    #[test]
+    fn non_finite_body_rate() {
+        let scene = |extra: &str| {
+            edited(
+                "name = \"two_angles\"\n",
+                &format!("name = \"two_angles\"\n{extra}\n"),
+            )
+        };
+        let e = error_at(
+            &scene(
+                "inertia = [[1.0e-300, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]\n\
+                 angular_momentum_body = [1.0e10, 0.0, 0.0]",
+            ),
+            "scene[1].angular_momentum_body",
+        );
+        assert!(e.message.contains("finite"), "{e}");
+        let e = error_at(
+            &scene("omega_world = [1.7e308, 1.7e308, 1.7e308]"),
+            "scene[1].omega_world",
+        );
+        assert!(e.message.contains("finite"), "{e}");
+        // The largest rates that stay finite load.
+        load_str(LABEL, &scene("omega = [1.7e308, 1.7e308, 1.7e308]")).unwrap();
     }
 
     // Other validations: names, springs, angular inputs, gates' shape.

@@ -50,6 +50,9 @@ pub enum Command {
     },
     /// Run the selected variants over their ladders; write summary.json and series.
     Run(RunArgs),
+    /// The stability study: largest stable and accurate steps, stiffness ladder, long
+    /// horizon; writes stability.json.
+    Stability(StabilityArgs),
     /// One run, its samples written as JSON.
     Trajectory(TrajectoryArgs),
     /// Evaluate the cases' [[gates]] against a summary; table, exit 0/1 (2: bad input).
@@ -103,6 +106,21 @@ impl Default for RunArgs {
             t_end: None,
         }
     }
+}
+
+#[derive(Debug, Args, Clone)]
+pub struct StabilityArgs {
+    #[command(flatten)]
+    pub filters: Filters,
+    /// Only the quick tier (the cases' `[stability].quick` scenes, a shorter ladder).
+    #[arg(long)]
+    pub quick: bool,
+    /// Parallel jobs (default: available cores).
+    #[arg(long)]
+    pub jobs: Option<usize>,
+    /// Output folder.
+    #[arg(long, default_value = "reports/latest")]
+    pub out: PathBuf,
 }
 
 #[derive(Debug, Args, Clone)]
@@ -194,6 +212,7 @@ pub fn execute(cli: Cli) -> i32 {
         }),
         Some(Command::List { json }) => cmd_list(&common, json),
         Some(Command::Run(a)) => cmd_run(&common, &a),
+        Some(Command::Stability(a)) => cmd_stability(&common, &a),
         Some(Command::Trajectory(a)) => cmd_trajectory(&common, &a),
         Some(Command::Gate(a)) => cmd_gate(&common, &a),
         Some(Command::Report { summary, out }) => cmd_report(&common, &summary, out.as_deref()),
@@ -363,6 +382,46 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
         summary.records.len() - runs,
         t0.elapsed().as_secs_f64(),
         opts.out.join("summary.json").display()
+    );
+    Ok(EXIT_OK)
+}
+
+fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
+    let cases = load_cases(common)?;
+    let filter = VariantFilter {
+        param: a.filters.param.clone(),
+        integrator: a.filters.integrator.clone(),
+        formulation: a.filters.formulation.clone(),
+    };
+    let bad = filter.unknown_names();
+    if !bad.is_empty() {
+        return Err(format!("unknown variant name(s): {}", bad.join(", ")));
+    }
+    // Validates the case and scene names (an unknown one is bad input).
+    plan::plans(&cases, &a.filters.case, &a.filters.scene)?;
+    let opts = crate::stability::StudyOptions {
+        quick: a.quick,
+        jobs: jobs_or_default(a.jobs),
+        out: a.out.clone(),
+        references: common.references.clone().unwrap_or_else(default_references),
+        progress: true,
+    };
+    let t0 = std::time::Instant::now();
+    eprintln!(
+        "mbdbench stability: {} jobs{}",
+        opts.jobs,
+        if a.quick { ", quick tier" } else { "" }
+    );
+    let summary =
+        crate::stability::run_study(&cases, &a.filters.case, &a.filters.scene, &filter, &opts)?;
+    let mut stdout = std::io::stdout().lock();
+    crate::stability::print_table(&summary, &mut stdout).map_err(|e| e.to_string())?;
+    println!(
+        "\n{} records, {} fits; {:.1} s; {}",
+        summary.records.len(),
+        summary.fits.len(),
+        t0.elapsed().as_secs_f64(),
+        opts.out.join("stability.json").display()
     );
     Ok(EXIT_OK)
 }

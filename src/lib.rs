@@ -43,5 +43,6 @@ pub mod report;
 pub mod rotation;
 pub mod run;
 pub mod score;
+pub mod stability;
 pub mod suite;
 pub mod summary;

@@ -35,7 +35,7 @@ pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
                 score_every: s.score_every,
             },
             limits,
-            observe: true,
+            observe: crate::run::Observe::Grid,
         },
         energy_scale: c.energy_scale,
         primary_metric: c.primary_metric.clone(),

@@ -10,12 +10,14 @@
 //! written on SO(3) x R^3 in the body formulation. Per scene, the SE(3) charts (`se3_hq`,
 //! `dual_quat`) are `n/a` when the body does not translate (a pivot, or no mass).
 use crate::integrate::adaptive_rk::AdaptiveRk;
+use crate::integrate::compensated::GaussKahan;
 use crate::integrate::crouch_grossman::CrouchGrossman;
 use crate::integrate::explicit_rk::ExplicitRk;
 use crate::integrate::implicit_rk::ImplicitRk;
 use crate::integrate::lgvi::Lgvi;
 use crate::integrate::lie_gen_alpha::LieGenAlpha;
 use crate::integrate::simo_wong::SimoWong;
+use crate::integrate::simo_wong_kahan::SimoWongKahan;
 use crate::integrate::splitting::Splitting;
 use crate::integrate::{Adaptive, FixedStep, Limits, MethodInfo};
 use crate::model::rigid_body::{Observation, RigidBody, RigidSystem};
@@ -23,7 +25,7 @@ use crate::rotation::{
     Body, DualQuat, EulerXyz, EulerZxz, EulerZyx, Formulation, Matrix, MatrixProj, PoseChart, Quat,
     QuatProj, RotVec, Se3Hq, So3, Spatial,
 };
-use crate::run::{Grid, RunOutput, Watched, run_adaptive, run_fixed};
+use crate::run::{Grid, Observe, RunOutput, Watched, run_adaptive, run_fixed};
 
 /// What a run function needs of a scene.
 #[derive(Debug, Clone)]
@@ -32,9 +34,9 @@ pub struct Setup {
     pub initial: Observation,
     pub grid: Grid,
     pub limits: Limits,
-    /// Observe at the output times (false: the timing pass, which keeps only the final state;
-    /// adaptive methods take the same steps either way, as their output is interpolated).
-    pub observe: bool,
+    /// When to observe (`Final`: the timing pass, which keeps only the final state; adaptive
+    /// methods take the same steps either way, as their output is interpolated).
+    pub observe: Observe,
 }
 
 /// A monomorphised run: fixed step (`dt`) or tolerance (`tol`).
@@ -87,6 +89,9 @@ pub const INTEGRATORS: &[&str] = &[
     "lgvi",
     "simo_wong",
     "lie_gen_alpha",
+    "implicit_midpoint_kahan",
+    "gauss6_kahan",
+    "simo_wong_kahan",
 ];
 
 /// The formulations.
@@ -101,10 +106,21 @@ pub fn static_na_reason(param: &str, integrator: &str, formulation: &str) -> Str
         "lie_euler" | "cg3" if !LIE_PARAMS.contains(&param) => {
             "Crouch-Grossman methods need a Lie-group chart (so3, se3_hq, dual_quat)".into()
         }
-        "splitting" | "lgvi" | "simo_wong" | "lie_gen_alpha" if param != "so3" => {
+        "implicit_midpoint_kahan" | "gauss6_kahan"
+            if !(["quat", "so3"].contains(&param) && formulation == "body") =>
+        {
+            "compensated summation is registered on quat and so3 in the body formulation only \
+             (the long-horizon study's charts)"
+                .into()
+        }
+        "splitting" | "lgvi" | "simo_wong" | "lie_gen_alpha" | "simo_wong_kahan"
+            if param != "so3" =>
+        {
             "written on SO(3) x R^3 (chart so3) only".into()
         }
-        "splitting" | "lgvi" | "simo_wong" | "lie_gen_alpha" if formulation != "body" => {
+        "splitting" | "lgvi" | "simo_wong" | "lie_gen_alpha" | "simo_wong_kahan"
+            if formulation != "body" =>
+        {
             "written in the body formulation only".into()
         }
         _ => "not registered".into(),
@@ -150,7 +166,7 @@ macro_rules! fixed {
                     dt,
                     &setup.grid,
                     &setup.limits,
-                    setup.observe,
+                    &setup.observe,
                 )
             },
         }
@@ -170,7 +186,7 @@ macro_rules! adaptive {
                 let sys = RigidSystem::<$chart, $form>::new(setup.body.clone());
                 let x0 = sys.state_from(&setup.initial);
                 let mut m = AdaptiveRk::$ctor(tol);
-                run_adaptive(&sys, &mut m, x0, &setup.grid, &setup.limits, setup.observe)
+                run_adaptive(&sys, &mut m, x0, &setup.grid, &setup.limits, &setup.observe)
             },
         }
     };
@@ -220,10 +236,32 @@ fn build() -> Vec<Variant> {
     v.push(fixed!(So3, Body, "lgvi", Lgvi::new()));
     v.push(fixed!(So3, Body, "simo_wong", SimoWong::new()));
     v.push(fixed!(So3, Body, "lie_gen_alpha", LieGenAlpha::default()));
+    // Compensated summation, for the long-horizon study (stability::long_horizon).
+    for_kahan(&mut v);
     for x in &v {
         debug_assert_eq!(x.info.name, x.integrator, "{x:?}");
     }
     v
+}
+
+/// The compensated-summation variants (integrate::compensated), on the long-horizon study's
+/// charts only.
+fn for_kahan(v: &mut Vec<Variant>) {
+    v.push(fixed!(
+        Quat,
+        Body,
+        "implicit_midpoint_kahan",
+        GaussKahan::implicit_midpoint()
+    ));
+    v.push(fixed!(
+        So3,
+        Body,
+        "implicit_midpoint_kahan",
+        GaussKahan::implicit_midpoint()
+    ));
+    v.push(fixed!(Quat, Body, "gauss6_kahan", GaussKahan::gauss6()));
+    v.push(fixed!(So3, Body, "gauss6_kahan", GaussKahan::gauss6()));
+    v.push(fixed!(So3, Body, "simo_wong_kahan", SimoWongKahan::new()));
 }
 
 /// The Crouch-Grossman methods on the three Lie-group charts.

@@ -11,7 +11,9 @@
 //! hand out their dense output at the output times, so the output grid does not constrain
 //! their steps or inflate their work counts. A failure ends the run: the samples up to it are kept, the failure records its time.
 //! The loop never allocates per step (the sample vector is reserved up front) and observes
-//! only at output times.
+//! only at output times: the grid, only the final state (timing), or a list of step indices
+//! (`Observe::Steps`: the stability search's `t_h / n` steps, the long-horizon study's
+//! log-spaced times).
 use crate::integrate::{Adaptive, Failure, FixedStep, Limits, Stats, System};
 use crate::model::rigid_body::Observation;
 
@@ -22,6 +24,21 @@ pub trait Observable: System {
     fn observe(&self, x: &Self::State) -> Observation;
     /// The chart's own constraint residual (None for minimal charts).
     fn residual(&self, x: &Self::State) -> Option<f64>;
+}
+
+/// When a run observes its state.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Observe {
+    /// On the scene's output grid (the sample grid, or the score grid; always `t_end`).
+    Grid,
+    /// Only the initial and final states (the timing pass).
+    Final,
+    /// At the times `k t_end / n` for the listed `k` (strictly ascending; 0 and `n` are always
+    /// observed), for studies whose steps do not divide the score grid (the stability
+    /// search's `t_h / n`) or whose times are log-spaced (the long-horizon study). A
+    /// fixed-step run must take `n` steps (its step is `t_end / n`); an adaptive run steps
+    /// freely and interpolates there. The samples' `score_stride` is 1.
+    Steps { n: u64, at: std::sync::Arc<[u64]> },
 }
 
 /// How a run steps: a fixed step or an adaptive tolerance.
@@ -113,6 +130,29 @@ fn sample<S: Observable>(sys: &S, t: f64, x: &S::State) -> Sample {
     }
 }
 
+/// Samples reserved up front: the whole output grid, up to 65536 (a longer grid grows the
+/// vector geometrically, never per step). Reserving the grid unbounded aborted the process on
+/// a fine sample grid over a long horizon (tests/fuzz.rs).
+fn reserve(n_out: u64) -> usize {
+    n_out.min(1 << 16) as usize + 1
+}
+
+/// The `work_limit` failure of a run that needs `n` steps (fixed step) or output points
+/// (adaptive) where its budget allows `max_steps`: it fails at once, at `t = 0`, instead of
+/// integrating (and storing samples) up to the limit.
+fn over_budget(what: &str, n: u64, limits: &Limits) -> Option<Failure> {
+    (n > limits.max_steps).then(|| {
+        Failure::new(
+            crate::integrate::FailureKind::WorkLimit,
+            0.0,
+            format!(
+                "needs {n} {what}, more than max_steps = {}",
+                limits.max_steps
+            ),
+        )
+    })
+}
+
 /// Runs a fixed-step method over the grid from `x0`; the loop counts the steps (adaptive
 /// methods count their own accepted and rejected steps).
 pub fn run_fixed<S: Observable, M: FixedStep<S>>(
@@ -122,10 +162,20 @@ pub fn run_fixed<S: Observable, M: FixedStep<S>>(
     h_nominal: f64,
     grid: &Grid,
     limits: &Limits,
-    observe: bool,
+    observe: &Observe,
 ) -> Result<RunOutput, String> {
     let n_total = divides(grid.t_end, h_nominal)
         .ok_or_else(|| format!("step {h_nominal} does not divide t_end = {}", grid.t_end))?;
+    if let Observe::Steps { n, at } = observe {
+        if *n != n_total {
+            return Err(format!(
+                "observation grid of {n} steps, but the step {h_nominal} takes {n_total}"
+            ));
+        }
+        check_ascending(at)?;
+        return run_fixed_at(sys, method, x0, grid.t_end, n_total, at, limits);
+    }
+    let observe = *observe == Observe::Grid;
     let (dt_out, n_out, stride) = output_grid(grid, Some(h_nominal))?;
     let per_out = divides(dt_out, h_nominal)
         .ok_or_else(|| format!("step {h_nominal} does not divide the output interval {dt_out}"))?;
@@ -136,7 +186,7 @@ pub fn run_fixed<S: Observable, M: FixedStep<S>>(
     }
     let h = grid.t_end / n_total as f64;
     let mut out = RunOutput {
-        samples: Vec::with_capacity(n_out as usize + 1),
+        samples: Vec::with_capacity(reserve(n_out)),
         score_stride: stride,
         failure: None,
         stats: Stats::default(),
@@ -150,31 +200,102 @@ pub fn run_fixed<S: Observable, M: FixedStep<S>>(
     }
     out.conditioning_min = sys.conditioning(&x);
     out.samples.push(sample(sys, 0.0, &x));
+    if let Some(f) = over_budget("steps", n_total, limits) {
+        out.failure = Some(f);
+        return Ok(out);
+    }
     let mut k: u64 = 0;
     for _ in 0..n_out {
         for _ in 0..per_out {
-            let t = k as f64 * h;
-            let r = method.step(sys, t, h, &mut x, &mut out.stats);
+            let r = fixed_step(sys, method, &mut x, k, h, limits, &mut out);
             k += 1;
-            out.stats.steps += 1;
-            let t1 = k as f64 * h;
-            let r = r.and_then(|_| {
-                if sys.normalize(&mut x) {
-                    out.stats.normalizations += 1;
-                }
-                sys.check(t1, &x)
-            });
-            if let Err(f) = r.and_then(|_| limits.check(t1, &out.stats)) {
+            if let Err(f) = r {
                 out.failure = Some(f);
                 return Ok(out);
-            }
-            let c = sys.conditioning(&x);
-            if c < out.conditioning_min {
-                out.conditioning_min = c;
             }
         }
         if observe || k == n_total {
             out.samples.push(sample(sys, k as f64 * h, &x));
+        }
+    }
+    Ok(out)
+}
+
+/// One checked step of a fixed-step run from step index `k` (the shared body of both fixed
+/// loops): step, count, normalize, check the state and the budgets, track the conditioning.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn fixed_step<S: Observable, M: FixedStep<S>>(
+    sys: &S,
+    method: &mut M,
+    x: &mut S::State,
+    k: u64,
+    h: f64,
+    limits: &Limits,
+    out: &mut RunOutput,
+) -> Result<(), Failure> {
+    let r = method.step(sys, k as f64 * h, h, x, &mut out.stats);
+    out.stats.steps += 1;
+    let t1 = (k + 1) as f64 * h;
+    r.and_then(|_| {
+        if sys.normalize(x) {
+            out.stats.normalizations += 1;
+        }
+        sys.check(t1, x)
+    })
+    .and_then(|_| limits.check(t1, &out.stats))?;
+    let c = sys.conditioning(x);
+    if c < out.conditioning_min {
+        out.conditioning_min = c;
+    }
+    Ok(())
+}
+
+fn check_ascending(at: &[u64]) -> Result<(), String> {
+    if at.windows(2).any(|w| w[0] >= w[1]) {
+        return Err("observation step indices must be strictly ascending".into());
+    }
+    Ok(())
+}
+
+/// `run_fixed` with `Observe::Steps`: `n_total` steps of `t_end / n_total`, observed at step
+/// 0, at the listed indices and at the last step.
+fn run_fixed_at<S: Observable, M: FixedStep<S>>(
+    sys: &S,
+    method: &mut M,
+    x0: S::State,
+    t_end: f64,
+    n_total: u64,
+    at: &[u64],
+    limits: &Limits,
+) -> Result<RunOutput, String> {
+    let h = t_end / n_total as f64;
+    let mut out = RunOutput {
+        samples: Vec::with_capacity(at.len() + 2),
+        score_stride: 1,
+        failure: None,
+        stats: Stats::default(),
+        conditioning_min: sys.conditioning(&x0),
+    };
+    let mut x = x0;
+    if let Err(f) = sys.check(0.0, &x) {
+        out.failure = Some(f);
+        return Ok(out);
+    }
+    out.samples.push(sample(sys, 0.0, &x));
+    let mut next = at
+        .iter()
+        .copied()
+        .filter(|&k| k > 0 && k < n_total)
+        .peekable();
+    for k in 0..n_total {
+        if let Err(f) = fixed_step(sys, method, &mut x, k, h, limits, &mut out) {
+            out.failure = Some(f);
+            return Ok(out);
+        }
+        if next.peek() == Some(&(k + 1)) || k + 1 == n_total {
+            next.next();
+            out.samples.push(sample(sys, (k + 1) as f64 * h, &x));
         }
     }
     Ok(out)
@@ -247,16 +368,25 @@ pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
     x0: S::State,
     grid: &Grid,
     limits: &Limits,
-    observe: bool,
+    observe: &Observe,
 ) -> Result<RunOutput, String> {
-    let (dt_out, n_out, stride) = if observe {
-        output_grid(grid, None)?
-    } else {
-        (grid.t_end, 1, 1)
+    let (dt_out, n_out, stride, at) = match observe {
+        Observe::Grid => {
+            let (d, n, s) = output_grid(grid, None)?;
+            (d, n, s, None)
+        }
+        Observe::Final => (grid.t_end, 1, 1, None),
+        Observe::Steps { n, at } => {
+            check_ascending(at)?;
+            if *n == 0 {
+                return Err("an observation grid of 0 steps".into());
+            }
+            (grid.t_end / *n as f64, *n, 1, Some(&at[..]))
+        }
     };
     let w = Watched::new(sys.clone());
     let mut out = RunOutput {
-        samples: Vec::with_capacity(n_out as usize + 1),
+        samples: Vec::with_capacity(reserve(n_out)),
         score_stride: stride,
         failure: None,
         stats: Stats::default(),
@@ -270,9 +400,27 @@ pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
         return Ok(out);
     }
     out.samples.push(sample(sys, 0.0, &x));
+    if *observe == Observe::Grid
+        && let Some(f) = over_budget("output points", n_out, limits)
+    {
+        out.failure = Some(f);
+        return Ok(out);
+    }
     let samples = &mut out.samples;
+    let mut wanted = at.map(|a| a.iter().copied().filter(|&k| k > 0).peekable());
     let mut on_output = |k: u64, y: &S::State| {
-        samples.push(sample(sys, k as f64 * dt_out, y));
+        let keep = match wanted.as_mut() {
+            None => true,
+            Some(w) => {
+                while w.peek().is_some_and(|&j| j < k) {
+                    w.next();
+                }
+                w.peek() == Some(&k) || k == n_out
+            }
+        };
+        if keep {
+            samples.push(sample(sys, k as f64 * dt_out, y));
+        }
         Ok(())
     };
     let r = method.integrate_dense(
@@ -291,4 +439,39 @@ pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
         out.failure = Some(f);
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::integrate::FailureKind;
+
+    // A horizon needing more steps (fixed step) or output points (adaptive) than max_steps
+    // fails at once with work_limit at t = 0, keeping the initial sample; before, the run
+    // reserved the whole output grid and the process aborted on the allocation (found by
+    // tests/fuzz.rs).
+    #[test]
+    fn over_budget_grid_fails_at_once() {
+        let cases = crate::case::embedded().unwrap();
+        let c = cases.iter().find(|c| c.name == "gimbal_lock").unwrap();
+        let mut p = crate::plan::scene_plan(c, c.scene("spin_d1e-2").unwrap()).unwrap();
+        p.setup.grid.t_end = 1.0e9; // 1e11 steps of 1e-2 s
+        for (integrator, value) in [("rk4", 1.0e-2), ("dop853", 1.0e-8)] {
+            let v = crate::registry::find("so3", integrator, "body").unwrap();
+            let t0 = std::time::Instant::now();
+            let out = (v.run)(&p.setup, value).unwrap();
+            assert!(t0.elapsed().as_secs_f64() < 1.0, "{integrator}");
+            let f = out.failure.expect(integrator);
+            assert_eq!((f.kind, f.t), (FailureKind::WorkLimit, 0.0), "{f:?}");
+            assert!(f.message.contains("max_steps"), "{f:?}");
+            assert_eq!(out.samples.len(), 1);
+            assert_eq!(out.stats.steps, 0);
+        }
+        // Within the budget nothing changes: the run completes on its grid.
+        p.setup.grid.t_end = 3.2;
+        p.setup.limits.max_steps = 320;
+        let v = crate::registry::find("so3", "rk4", "body").unwrap();
+        let out = (v.run)(&p.setup, 1.0e-2).unwrap();
+        assert!(out.failure.is_none());
+        assert_eq!(out.samples.len(), 321);
+    }
 }

@@ -326,7 +326,7 @@ pub fn run_catalogue(
         for (job, d) in jobs.iter().zip(done.iter_mut()) {
             if d.series.is_some() {
                 let mut setup = plans_t[job.plan].setup.clone();
-                setup.observe = false;
+                setup.observe = crate::run::Observe::Final;
                 d.record.wall_s = time_run(job.variant, &setup, job.value, opts.repeats);
             }
             timing.tick();

@@ -165,17 +165,38 @@ pub fn format_utc(secs: u64) -> String {
     )
 }
 
-/// A per-run time series at the score times (design.md, "Files").
+/// A per-run time series at the score times (design.md, "Files"). JSON has no NaN or
+/// infinity: serde_json writes a non-finite value (an overflowed energy, say) as `null`, and
+/// the lists read `null` back as NaN, so that every series file written reads back (found by
+/// tests/fuzz.rs).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Series {
     pub t: Vec<f64>,
+    #[serde(deserialize_with = "nullable_f64s")]
     pub energy: Vec<f64>,
     pub constraint: Vec<Option<f64>>,
+    #[serde(deserialize_with = "nullable_f64s")]
     pub conditioning: Vec<f64>,
     /// The case's primary error metric at each score time (absent without a reference).
-    #[serde(skip_serializing_if = "Option::is_none", default)]
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        default,
+        deserialize_with = "nullable_f64s_opt"
+    )]
     pub primary_error: Option<Vec<f64>>,
     pub primary_metric: String,
+}
+
+/// A list of numbers in which `null` stands for a non-finite value, read as NaN.
+fn nullable_f64s<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
+    let v: Vec<Option<f64>> = Deserialize::deserialize(d)?;
+    Ok(v.into_iter().map(|x| x.unwrap_or(f64::NAN)).collect())
+}
+
+/// `nullable_f64s` for an optional list.
+fn nullable_f64s_opt<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<Vec<f64>>, D::Error> {
+    let v: Option<Vec<Option<f64>>> = Deserialize::deserialize(d)?;
+    Ok(v.map(|v| v.into_iter().map(|x| x.unwrap_or(f64::NAN)).collect()))
 }
 
 /// A file-name-safe id for a run.
@@ -204,6 +225,34 @@ mod tests {
         assert_eq!(format_utc(0), "1970-01-01T00:00:00Z");
         assert_eq!(format_utc(951_782_400), "2000-02-29T00:00:00Z");
         assert_eq!(format_utc(1_795_267_139), "2026-11-21T13:18:59Z");
+    }
+
+    /// A series with non-finite values (written as `null`) reads back, with NaN in their
+    /// place (before, reading it failed: `invalid type: null, expected f64`).
+    #[test]
+    fn series_with_non_finite_values_round_trip() {
+        let s = Series {
+            t: vec![0.0, 0.1],
+            energy: vec![1.0, f64::INFINITY],
+            constraint: vec![None, Some(1e-16)],
+            conditioning: vec![f64::NAN, 0.5],
+            primary_error: Some(vec![0.0, f64::NEG_INFINITY]),
+            primary_metric: "rotation_error_max".into(),
+        };
+        let text = serde_json::to_string(&s).unwrap();
+        let back: Series = serde_json::from_str(&text).unwrap();
+        assert_eq!(back.energy[0], 1.0);
+        assert!(back.energy[1].is_nan() && back.conditioning[0].is_nan());
+        assert_eq!(back.conditioning[1], 0.5);
+        let e = back.primary_error.unwrap();
+        assert!(e[0] == 0.0 && e[1].is_nan());
+        // An absent primary error stays absent.
+        let none = Series {
+            primary_error: None,
+            ..s
+        };
+        let back: Series = serde_json::from_str(&serde_json::to_string(&none).unwrap()).unwrap();
+        assert_eq!(back.primary_error, None);
     }
 
     /// Statuses serialize to the contract's strings.

@@ -1,11 +1,13 @@
-//! The real quick tier passes the quick gates and the committed baseline (issue 3, item 2),
-//! and the gate command's exit codes: 0 on the real quick tier, 2 on a truncated summary.
+//! The real quick tier (catalogue and stability study) passes the quick gates and the
+//! committed baseline (issue 3, item 2; issue 4, item 1), and the gate command's exit codes:
+//! 0 on the real quick tier, 2 on a truncated summary.
 mod common;
 
 use mbdbench::gate::{self, GateOptions, Verdict};
 
-/// Every quick gate of every case passes on a fresh quick run of the whole catalogue, and the
-/// fresh run shows no regression against reports/baseline/quick.json.
+/// Every quick gate of every case passes on a fresh quick run of the whole catalogue and of
+/// the stability study, and the fresh run shows no regression against
+/// reports/baseline/quick.json.
 #[test]
 fn real_quick_tier_passes_gates_and_baseline() {
     let mut rows = vec![];
@@ -32,7 +34,28 @@ fn real_quick_tier_passes_gates_and_baseline() {
         factor: gate::DEFAULT_FACTOR,
         references: mbdbench::cli::default_references(),
     };
-    rows.extend(gate::evaluate(&cases, &summary, None, &gopts).unwrap());
+    let sopts = mbdbench::stability::StudyOptions {
+        quick: true,
+        jobs: 2,
+        out: out.clone(),
+        references: mbdbench::cli::default_references(),
+        progress: false,
+    };
+    let stability = mbdbench::stability::run_study(
+        &cases,
+        &[],
+        &[],
+        &mbdbench::suite::VariantFilter::default(),
+        &sopts,
+    )
+    .unwrap();
+    rows.extend(gate::evaluate(&cases, &summary, Some(&stability), &gopts).unwrap());
+    // The stability gates were evaluated on stability.json records.
+    assert!(
+        rows.iter()
+            .any(|r| r.metric == "largest_stable_dt" && r.verdict == Verdict::Pass),
+        "no passing stability gate row"
+    );
     let failed: Vec<_> = rows.iter().filter(|r| r.verdict == Verdict::Fail).collect();
     assert!(
         failed.is_empty(),

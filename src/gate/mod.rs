@@ -97,7 +97,18 @@ pub const WORK_METRICS: &[&str] = &[
 
 /// The metric-name families a gate may name besides the names found in the records; a new
 /// family (the stability study's) is one more entry.
-pub const KNOWN_METRIC_LISTS: &[&[&str]] = &[metrics::RIGID_METRICS, WORK_METRICS];
+pub const KNOWN_METRIC_LISTS: &[&[&str]] = &[
+    metrics::RIGID_METRICS,
+    WORK_METRICS,
+    crate::stability::search::METRICS,
+];
+
+/// Whether a metric belongs to a variant as a whole (the stability search's largest steps),
+/// not to a ladder point: its gates expand over scenes x variants only, and match the
+/// records without `dt`/`tol`.
+pub fn per_variant(metric: &str) -> bool {
+    crate::stability::search::METRICS.contains(&metric)
+}
 
 /// Relative slack between a gate's bound and its `baseline x margin`.
 pub const BOUND_REL_TOL: f64 = 1e-9;
@@ -240,11 +251,12 @@ fn short(hash: &str) -> &str {
 // ---------------------------------------------------------------------------------------
 // Expansion and evaluation
 
-/// One gated run: a scene, a registered variant and a ladder value.
+/// One gated run: a scene, a registered variant and a ladder value (None for a per-variant
+/// metric).
 struct Point<'p> {
     plan: &'p ScenePlan,
     variant: &'static Variant,
-    value: f64,
+    value: Option<f64>,
 }
 
 fn expand<'p>(
@@ -275,6 +287,14 @@ fn expand<'p>(
                 continue;
             }
             matching += 1;
+            if per_variant(&g.metric) {
+                points.push(Point {
+                    plan,
+                    variant: v,
+                    value: None,
+                });
+                continue;
+            }
             let ladder = if quick { &plan.quick } else { &plan.ladders }.for_method(&v.info);
             let wanted = if adaptive { &f.tol } else { &f.dt };
             ladders.extend(ladder.iter().map(|x| format!("{x:e}")));
@@ -283,7 +303,7 @@ fn expand<'p>(
                     points.push(Point {
                         plan,
                         variant: v,
-                        value: x,
+                        value: Some(x),
                     });
                 }
             }
@@ -356,7 +376,10 @@ impl<'a> RecordIndex<'a> {
         ))?;
         let at = |r: &&&Record| {
             let x = if v.info.adaptive { r.tol } else { r.dt };
-            x.is_some_and(|x| same_value(x, p.value))
+            match p.value {
+                Some(want) => x.is_some_and(|x| same_value(x, want)),
+                None => r.dt.is_none() && r.tol.is_none(),
+            }
         };
         let mut candidates = list.iter().filter(at);
         let first = candidates.clone().next().copied();
@@ -467,8 +490,8 @@ fn judge(
         param: v.param.into(),
         integrator: v.integrator.into(),
         formulation: v.formulation.into(),
-        dt: (!v.info.adaptive).then_some(p.value),
-        tol: v.info.adaptive.then_some(p.value),
+        dt: p.value.filter(|_| !v.info.adaptive),
+        tol: p.value.filter(|_| v.info.adaptive),
         metric: g.metric.clone(),
         value: None,
         threshold: threshold_text(g.bound),
@@ -496,7 +519,11 @@ fn judge(
         );
         return row;
     }
+    // A per-variant study record judged against an on-the-fly reference carries no stored
+    // reference hash: only its physics hash can be stale.
+    let no_stored_reference = p.value.is_none() && r.reference_sha256.is_none();
     match refs.get(p.plan) {
+        _ if no_stored_reference => {}
         Err(e) => {
             row.note = format!("stale: {e}");
             return row;
@@ -767,6 +794,50 @@ mod tests {
             exit_code(&evaluate(&[c], &s, None, &opts(false)).unwrap()),
             1
         );
+    }
+
+    /// A per-variant stability metric (`largest_stable_dt`) is gated on the stability
+    /// summary's record without a ladder point and without a stored reference hash: the
+    /// measured step passes, a halved step fails, a missing record fails, and a stale physics
+    /// hash fails.
+    #[test]
+    fn halved_stable_step_fails() {
+        let gate = "[[gates]]\nmetric = \"largest_stable_dt\"\nmin = 0.276793332\n\
+                    where = { scene = \"two_angles\", param = \"so3\", integrator = \"simo_wong\", \
+                    formulation = \"body\" }\nquick = true\nbaseline = 0.46132222\nmargin = 0.6\n";
+        let c = fixture::with_gates("nine_spring", gate);
+        let stable = |dt: f64| {
+            let mut r = fixture::record(
+                &c,
+                "two_angles",
+                ("so3", "simo_wong", "body"),
+                None,
+                None,
+                &[("largest_stable_dt", dt)],
+                0,
+            );
+            r.reference_sha256 = None;
+            r
+        };
+        let s = fixture::summary(vec![]);
+        let eval = |st: Vec<Record>| {
+            let st = fixture::summary(st);
+            evaluate(std::slice::from_ref(&c), &s, Some(&st), &opts(true)).unwrap()
+        };
+        let rows = eval(vec![stable(0.46132222)]);
+        assert_eq!(rows.len(), 1);
+        assert_eq!((rows[0].dt, rows[0].tol), (None, None));
+        assert_eq!(rows[0].verdict, Verdict::Pass, "{rows:?}");
+        let rows = eval(vec![stable(0.46132222 / 2.0)]);
+        assert_eq!(rows[0].verdict, Verdict::Fail);
+        assert_eq!(rows[0].note, "below the minimum");
+        assert_eq!(exit_code(&rows), 1);
+        let rows = eval(vec![]);
+        assert!(rows[0].note.contains("no record"), "{}", rows[0].note);
+        let mut stale = stable(0.46132222);
+        stale.inputs_sha256 = "0".repeat(64);
+        let rows = eval(vec![stale]);
+        assert!(rows[0].note.starts_with("stale"), "{}", rows[0].note);
     }
 
     /// Records of the stability summary are searched too, and their metric names are known.

@@ -146,6 +146,9 @@ pub struct AdaptiveRk<S: System> {
     buf_e2: Vec<f64>,
 }
 
+/// The smallest tolerance an adaptive run accepts (10 unit roundoffs, Hairer's floor).
+pub const MIN_TOL: f64 = 10.0 * f64::EPSILON;
+
 impl<S: ErrorScale> AdaptiveRk<S> {
     /// The pair `tab` with `atol = rtol = tol`.
     pub fn new(tab: &'static EmbeddedTableau, tol: f64) -> Self {
@@ -283,6 +286,19 @@ impl<S: ErrorScale> AdaptiveRk<S> {
                 FailureKind::NonFinite,
                 t0,
                 format!("{}: non-finite time span [{t0}, {t1}]", self.tab.rk.name),
+            ));
+        }
+        // A tolerance below round-off cannot be met: the error estimate is noise, the step
+        // shrinks until the stages coincide and the run crawls on steps of ~1e-20 s to its
+        // work limit (minutes; found by tests/fuzz.rs). Refused at once, as Hairer's codes do.
+        if self.tol.is_nan() || self.tol < MIN_TOL {
+            return Err(Failure::new(
+                FailureKind::StepSizeUnderflow,
+                t0,
+                format!(
+                    "{}: tolerance {:e} is below round-off; expected >= {MIN_TOL:e}",
+                    self.tab.rk.name, self.tol
+                ),
             ));
         }
         let dir = if t1 > t0 { 1.0 } else { -1.0 };
@@ -747,6 +763,34 @@ mod tests {
             assert_eq!(e.kind, FailureKind::StepSizeUnderflow);
             assert!((e.t - 1.0).abs() < 1e-5 && x[0] > 1e12);
             assert_eq!(ad.time(), None);
+        }
+    }
+
+    /// A tolerance below round-off fails at once with `step_size_underflow` (before, a
+    /// spinning body at tol 1e-73 crawled on ~1e-20 s steps towards its work limit).
+    #[test]
+    fn tolerance_below_round_off_is_refused() {
+        let cases = crate::case::embedded().unwrap();
+        let c = cases.iter().find(|c| c.name == "gimbal_lock").unwrap();
+        let p = crate::plan::scene_plan(c, c.scene("spin_d1e-2").unwrap()).unwrap();
+        for integrator in ["dopri5", "dop853"] {
+            let v = crate::registry::find("so3", integrator, "body").unwrap();
+            let out = (v.run)(&p.setup, 1.7e-73).unwrap();
+            let f = out.failure.unwrap();
+            assert_eq!(out.stats.steps, 0, "refused before any step");
+            assert_eq!(
+                (f.kind, f.t),
+                (FailureKind::StepSizeUnderflow, 0.0),
+                "{f:?}"
+            );
+            assert!(f.message.contains("round-off"), "{f:?}");
+            // At the floor itself the run goes ahead.
+            let out = (v.run)(&p.setup, MIN_TOL).unwrap();
+            assert!(
+                out.failure.as_ref().is_none_or(|f| f.t > 0.0),
+                "{:?}",
+                out.failure
+            );
         }
     }
 

@@ -102,6 +102,11 @@ pub struct NewtonOptions {
     pub refresh_iters: u32,
     /// Start from the previous step's extrapolated stages when the step continues it.
     pub extrapolate: bool,
+    /// Judge convergence relative to the stage increments alone (`10 eps |Z|`, with the
+    /// stagnation band at `1e3 eps |Z|`) instead of `10 eps max(1, state_scale, |Z|)`: the
+    /// stages are then solved to their own round-off, which the compensated variants
+    /// (`compensated`) need, as their state update no longer rounds at `eps |x|`.
+    pub increment_relative: bool,
 }
 
 impl Default for NewtonOptions {
@@ -112,6 +117,7 @@ impl Default for NewtonOptions {
             jacobian: JacobianUpdate::Reuse,
             refresh_iters: 8,
             extrapolate: true,
+            increment_relative: false,
         }
     }
 }
@@ -470,7 +476,11 @@ impl<S: System> ImplicitRk<S> {
                 self.z[i].axpy(1.0, &d);
                 zmax = zmax.max(self.z[i].norm_inf());
             }
-            let scale = self.base_scale().max(zmax);
+            let scale = if self.opts.increment_relative {
+                zmax
+            } else {
+                self.base_scale().max(zmax)
+            };
             tol = 10.0 * eps * scale;
             if dz <= tol {
                 *iters += k;
@@ -547,6 +557,25 @@ impl<S: System> FixedStep<S> for ImplicitRk<S> {
         x: &mut S::State,
         stats: &mut Stats,
     ) -> Result<(), Failure> {
+        let dx = self.increment(sys, t, h, x, stats)?;
+        *x = sys.retract(x, &dx);
+        Ok(())
+    }
+}
+
+impl<S: System> ImplicitRk<S> {
+    /// Solves the stage equations of the step from `(t, x)` and returns the update
+    /// `sum_i d_i Z_i` (`step` is `retract(x, increment)`; the compensated variants retract it
+    /// their own way). Keeps the bookkeeping of a completed step (extrapolation, Jacobian
+    /// refresh).
+    pub(crate) fn increment(
+        &mut self,
+        sys: &S,
+        t: f64,
+        h: f64,
+        x: &S::State,
+        stats: &mut Stats,
+    ) -> Result<S::Tangent, Failure> {
         if !h.is_finite() || !t.is_finite() {
             return Err(Failure::new(
                 FailureKind::NonFinite,
@@ -586,14 +615,13 @@ impl<S: System> FixedStep<S> for ImplicitRk<S> {
         for i in 0..self.tab.s {
             dx.axpy(self.tab.d[i], &self.z[i]);
         }
-        *x = sys.retract(x, &dx);
         self.z_prev = self.z;
         self.have_prev = true;
         self.t_next = t + h;
         self.h_prev = h;
         self.last_iters = iters;
         self.refresh = retried || iters > self.opts.refresh_iters;
-        Ok(())
+        Ok(dx)
     }
 }
 

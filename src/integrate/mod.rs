@@ -19,6 +19,7 @@ use crate::math::vector::Vector;
 
 pub mod adaptive_rk;
 mod body_momentum;
+pub mod compensated;
 pub mod crouch_grossman;
 pub mod explicit_rk;
 pub mod implicit_rk;
@@ -30,6 +31,7 @@ mod own_state;
 #[cfg(test)]
 mod rigid_test_support;
 pub mod simo_wong;
+pub mod simo_wong_kahan;
 pub mod splitting;
 pub mod tableau;
 #[cfg(test)]

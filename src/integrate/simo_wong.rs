@@ -62,22 +62,22 @@ impl SimoWong {
     }
 }
 
-/// The data of one step.
-struct StepData<'a> {
-    b: &'a RigidBody,
-    r0: Matrix3<f64>,
-    x0: Vector3<f64>,
-    v0: Vector3<f64>,
-    omega0: Vector3<f64>,
-    pi0: Vector3<f64>,
-    h: f64,
-    translates: bool,
+/// The data of one step (also used by `simo_wong_kahan`).
+pub(super) struct StepData<'a> {
+    pub(super) b: &'a RigidBody,
+    pub(super) r0: Matrix3<f64>,
+    pub(super) x0: Vector3<f64>,
+    pub(super) v0: Vector3<f64>,
+    pub(super) omega0: Vector3<f64>,
+    pub(super) pi0: Vector3<f64>,
+    pub(super) h: f64,
+    pub(super) translates: bool,
 }
 
 impl StepData<'_> {
     /// (SW2): `(fbar, mbar)` for `R_{n+1}`, `Rbar` and `x_{n+1}`.
     #[inline]
-    fn discrete_wrench(
+    pub(super) fn discrete_wrench(
         &self,
         r1: &Matrix3<f64>,
         rbar: &Matrix3<f64>,

@@ -33,33 +33,59 @@ pub fn fit(points: &[(f64, Option<f64>)], claim: f64) -> Fit {
             points: used,
         };
     }
-    let n = used.len() as f64;
+    match loglog_slope(&used) {
+        Some(order) => Fit {
+            order: Some(order),
+            reason: None,
+            points: used,
+        },
+        None => Fit {
+            order: None,
+            reason: Some("all ladder points have the same step".into()),
+            points: used,
+        },
+    }
+}
+
+/// The least-squares slope of `log y` against `log x` through `[x, y]` points (all positive
+/// and finite); None for fewer than two points or when every `x` is the same.
+pub fn loglog_slope(points: &[[f64; 2]]) -> Option<f64> {
+    if points.len() < 2 || points.iter().any(|[x, y]| !(*x > 0.0 && *y > 0.0)) {
+        return None;
+    }
+    let n = points.len() as f64;
     let (mut sx, mut sy, mut sxx, mut sxy) = (0.0, 0.0, 0.0, 0.0);
-    for [h, e] in &used {
-        let (x, y) = (h.ln(), e.ln());
+    for [x, y] in points {
+        let (x, y) = (x.ln(), y.ln());
         sx += x;
         sy += y;
         sxx += x * x;
         sxy += x * y;
     }
     let den = n * sxx - sx * sx;
-    if den.abs() < 1e-300 {
-        return Fit {
-            order: None,
-            reason: Some("all ladder points have the same step".into()),
-            points: used,
-        };
+    if den.abs() <= 1e-300 || den.is_nan() {
+        return None;
     }
-    Fit {
-        order: Some((n * sxy - sx * sy) / den),
-        reason: None,
-        points: used,
-    }
+    let slope = (n * sxy - sx * sy) / den;
+    slope.is_finite().then_some(slope)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The log-log slope of a power law is its exponent; degenerate inputs give none.
+    #[test]
+    fn loglog_slope_of_power_laws() {
+        let pts: Vec<[f64; 2]> = [1.0, 10.0, 100.0, 1e4]
+            .iter()
+            .map(|k: &f64| [*k, 0.3 * k.powf(-0.5)])
+            .collect();
+        assert!((loglog_slope(&pts).unwrap() + 0.5).abs() < 1e-12);
+        assert_eq!(loglog_slope(&pts[..1]), None);
+        assert_eq!(loglog_slope(&[[2.0, 1.0], [2.0, 3.0]]), None);
+        assert_eq!(loglog_slope(&[[1.0, 1.0], [2.0, 0.0]]), None);
+    }
 
     /// A pure power law is fitted exactly; points outside [100 claim, 1e-2] are excluded and
     /// fewer than three usable points give no order with a reason.

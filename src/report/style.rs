@@ -14,7 +14,7 @@ use plotters::style::RGBColor;
 use crate::registry;
 
 /// The integrator colours, in `registry::INTEGRATORS` order.
-const INTEGRATOR_COLOURS: [RGBColor; 12] = [
+const INTEGRATOR_COLOURS: [RGBColor; 15] = [
     RGBColor(127, 127, 127), // euler: grey
     RGBColor(31, 119, 180),  // rk4: blue
     RGBColor(255, 127, 14),  // dopri5: orange
@@ -27,6 +27,9 @@ const INTEGRATOR_COLOURS: [RGBColor; 12] = [
     RGBColor(188, 189, 34),  // lgvi: olive
     RGBColor(0, 0, 0),       // simo_wong: black
     RGBColor(57, 59, 121),   // lie_gen_alpha: indigo
+    RGBColor(116, 196, 118), // implicit_midpoint_kahan: light green
+    RGBColor(158, 154, 200), // gauss6_kahan: lavender
+    RGBColor(99, 99, 99),    // simo_wong_kahan: dark grey
 ];
 
 /// Extra colours for integrators the registry does not list.

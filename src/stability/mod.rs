@@ -1,0 +1,289 @@
+//! The stability study behind `mbdbench stability` (issue 4): how far each variant can be
+//! pushed before it fails, not only how accurate it is at comfortable steps. Its parts, one
+//! file each, return records in the summary's schema (design.md, "Files") that this module
+//! merges into `stability.json`:
+//!
+//! - `search`: the largest stable and the largest accurate step (or tolerance) per variant and
+//!   scene over the scene's stability horizon `t_h` (20 periods of its fastest linearised
+//!   mode), searched over integer step counts `n` (`dt = t_h / n`);
+//! - `stiffness`: `nine_spring` with its springs stiffened by 10^0 ... 10^4, both steps against
+//!   the stiffness with fitted log-log slopes;
+//! - `long_horizon`: energy and momentum error over 10^6 - 10^7 steps at log-spaced times, with
+//!   fitted growth exponents (truncation drift ~ t, bounded ~ t^0, round-off random walk ~
+//!   t^(1/2)).
+//!
+//! Every part is deterministic: its records (all but `wall_s`, `created_utc`, `env`) do not
+//! depend on `--jobs`.
+use std::path::PathBuf;
+
+use crate::summary::{FitRecord, Record};
+
+pub mod long_horizon;
+pub mod search;
+pub mod stiffness;
+
+/// Options of the study.
+#[derive(Debug, Clone)]
+pub struct StudyOptions {
+    /// The quick tier (CI): fewer scenes, shorter horizons.
+    pub quick: bool,
+    pub jobs: usize,
+    pub out: PathBuf,
+    pub references: PathBuf,
+    /// Progress lines on stderr.
+    pub progress: bool,
+}
+
+/// What one part of the study contributes to `stability.json`: records, fits, and series
+/// files (path relative to the output folder, JSON value).
+#[derive(Debug, Default)]
+pub struct Part {
+    pub records: Vec<Record>,
+    pub fits: Vec<FitRecord>,
+    pub series: Vec<(String, serde_json::Value)>,
+}
+
+impl Part {
+    /// Appends another part.
+    pub fn extend(&mut self, other: Part) {
+        self.records.extend(other.records);
+        self.fits.extend(other.fits);
+        self.series.extend(other.series);
+    }
+}
+
+/// The variants of the quick tier's step searches (CI): the gated pair and explicit Euler,
+/// on `so3` in the body formulation.
+pub const QUICK_PARAMS: &[&str] = &["so3"];
+pub const QUICK_INTEGRATORS: &[&str] = &["euler", "rk4", "simo_wong"];
+
+/// `filter` narrowed to the quick tier's variants.
+pub fn quick_filter(filter: &crate::suite::VariantFilter) -> crate::suite::VariantFilter {
+    let meet = |user: &[String], ours: &[&str]| -> Vec<String> {
+        ours.iter()
+            .filter(|x| user.is_empty() || user.iter().any(|u| u == *x))
+            .map(|x| x.to_string())
+            .collect()
+    };
+    crate::suite::VariantFilter {
+        param: meet(&filter.param, QUICK_PARAMS),
+        integrator: meet(&filter.integrator, QUICK_INTEGRATORS),
+        formulation: meet(&filter.formulation, &["body"]),
+    }
+}
+
+/// One search job: a scene and a variant.
+struct Job {
+    scene: usize,
+    variant: &'static crate::registry::Variant,
+}
+
+/// The scenes of the step search: every scene of every case with a `[stability]` table (the
+/// quick tier: the table's `quick` scenes), filtered by name.
+pub fn study_scenes(
+    cases: &[crate::case::Case],
+    case_filter: &[String],
+    scene_filter: &[String],
+    quick: bool,
+) -> Result<Vec<search::StudyScene>, String> {
+    let plans = crate::plan::plans(cases, case_filter, scene_filter)?;
+    let mut out = vec![];
+    for p in &plans {
+        let Some(c) = cases.iter().find(|c| c.name == p.case) else {
+            continue;
+        };
+        let Some(spec) = &c.stability else { continue };
+        if quick && !spec.quick.contains(&p.scene) {
+            continue;
+        }
+        if let Some(s) = search::StudyScene::new(c, p)? {
+            out.push(s.tier(quick));
+        }
+    }
+    Ok(out)
+}
+
+/// Searches the largest stable and accurate steps of every admitted variant on `scenes`, in
+/// parallel over `jobs` threads; records in registry order per scene.
+pub fn step_search(
+    scenes: &[search::StudyScene],
+    filter: &crate::suite::VariantFilter,
+    opts: &StudyOptions,
+    label: &str,
+) -> Result<Part, String> {
+    use rayon::prelude::*;
+    let references: Vec<search::OnTheFly> = scenes.iter().map(|_| Default::default()).collect();
+    let mut jobs = vec![];
+    for (i, s) in scenes.iter().enumerate() {
+        for v in crate::registry::variants() {
+            if filter.admits(v.param, v.integrator, v.formulation)
+                && crate::registry::scene_na_reason(v, &s.plan.setup.body).is_none()
+            {
+                jobs.push(Job {
+                    scene: i,
+                    variant: v,
+                });
+            }
+        }
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.jobs.max(1))
+        .build()
+        .map_err(|e| e.to_string())?;
+    let total = jobs.len();
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let records: Vec<Record> = pool.install(|| {
+        jobs.par_iter()
+            .map(|j| {
+                let s = &scenes[j.scene];
+                let t0 = std::time::Instant::now();
+                let (stable, accurate) = search::search(j.variant, s, &references[j.scene]);
+                let mut r = search::record(j.variant, s, &stable, &accurate);
+                let w = t0.elapsed().as_secs_f64();
+                r.wall_s = Some(crate::summary::Wall { min: w, median: w });
+                let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                if opts.progress && (k.is_multiple_of((total / 10).max(1)) || k == total) {
+                    eprintln!("  {label} {k}/{total} searches");
+                }
+                r
+            })
+            .collect()
+    });
+    Ok(Part {
+        records,
+        ..Default::default()
+    })
+}
+
+/// The whole study: the step search on the case scenes, the stiffness ladder and the long
+/// horizon; writes `stability.json` (and series) into `opts.out`; returns the summary.
+pub fn run_study(
+    cases: &[crate::case::Case],
+    case_filter: &[String],
+    scene_filter: &[String],
+    filter: &crate::suite::VariantFilter,
+    opts: &StudyOptions,
+) -> Result<crate::summary::Summary, String> {
+    let scenes = study_scenes(cases, case_filter, scene_filter, opts.quick)?;
+    let tier_filter = if opts.quick {
+        quick_filter(filter)
+    } else {
+        filter.clone()
+    };
+    let mut all = step_search(&scenes, &tier_filter, opts, "steps")?;
+    let wanted = |case: &str| case_filter.is_empty() || case_filter.iter().any(|c| c == case);
+    if wanted(stiffness::CASE) && scene_filter.is_empty() {
+        all.extend(stiffness::study(cases, &tier_filter, opts)?);
+    }
+    if scene_filter.is_empty() {
+        let kept: Vec<crate::case::Case> =
+            cases.iter().filter(|c| wanted(&c.name)).cloned().collect();
+        all.extend(long_horizon::study(&kept, filter, opts)?);
+    }
+    let mut records = all.records;
+    records.sort_by_key(record_order);
+    for (rel, value) in &all.series {
+        let text = serde_json::to_string(value).map_err(|e| e.to_string())?;
+        let path = opts.out.join(rel);
+        crate::reference::write_atomic(&path, text.as_bytes())
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    let summary = crate::summary::Summary {
+        schema: 1,
+        git_commit: crate::summary::git_commit().into(),
+        created_utc: crate::summary::now_utc(),
+        env: crate::summary::Env::current(opts.jobs),
+        records,
+        fits: all.fits,
+    };
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    let path = opts.out.join("stability.json");
+    crate::reference::write_atomic(&path, text.as_bytes())
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(summary)
+}
+
+/// The registry's report order of a variant.
+pub fn registry_order(param: &str, integrator: &str, formulation: &str) -> (usize, usize, usize) {
+    let pos =
+        |name: &str, list: &[&str]| list.iter().position(|x| *x == name).unwrap_or(usize::MAX);
+    (
+        pos(param, crate::registry::PARAMS),
+        pos(integrator, crate::registry::INTEGRATORS),
+        pos(formulation, crate::registry::FORMULATIONS),
+    )
+}
+
+/// A record's place in `stability.json`: case, scene, registry order, ladder value.
+fn record_order(r: &Record) -> (String, String, (usize, usize, usize), u64, u64) {
+    (
+        r.case.clone(),
+        r.scene.clone(),
+        registry_order(&r.param, &r.integrator, &r.formulation),
+        r.dt.map(f64::to_bits).unwrap_or(0),
+        r.tol.map(f64::to_bits).unwrap_or(0),
+    )
+}
+
+/// The terminal table of the study: the step-search records per scene (largest stable and
+/// accurate step or tolerance, what limits them), then the fitted slopes and exponents.
+pub fn print_table(
+    s: &crate::summary::Summary,
+    out: &mut impl std::io::Write,
+) -> std::io::Result<()> {
+    let num = |v: Option<f64>| v.map_or_else(|| format!("{:>10}", "-"), |x| format!("{x:10.3e}"));
+    let mut scene = (String::new(), String::new());
+    for r in &s.records {
+        let stable = ["largest_stable_dt", "largest_stable_tol"]
+            .into_iter()
+            .find(|m| r.metrics.contains_key(*m));
+        let Some(sm) = stable else { continue };
+        let am = sm.replace("stable", "accurate");
+        if (r.case.clone(), r.scene.clone()) != scene {
+            scene = (r.case.clone(), r.scene.clone());
+            writeln!(
+                out,
+                "\n{}/{} (t_h = {} s)\n  {:<12} {:<18} {:<8} {:>10} {:>10}  limited by (stable)",
+                r.case,
+                r.scene,
+                num(r.metrics.get("stability_horizon").copied().flatten()).trim(),
+                "param",
+                "integrator",
+                "form",
+                "stable",
+                "accurate"
+            )?;
+        }
+        let why = r.metric_reasons.get(sm).map_or("", String::as_str);
+        let short: String = why.chars().take(70).collect();
+        writeln!(
+            out,
+            "  {:<12} {:<18} {:<8} {} {}  {}",
+            r.param,
+            r.integrator,
+            r.formulation,
+            num(r.metrics.get(sm).copied().flatten()),
+            num(r.metrics.get(am.as_str()).copied().flatten()),
+            short
+        )?;
+    }
+    if !s.fits.is_empty() {
+        writeln!(out, "\nfits")?;
+        for f in &s.fits {
+            writeln!(
+                out,
+                "  {:<24} {:<12} {:<18} {:<8} {:<36} {}",
+                f.scene,
+                f.param,
+                f.integrator,
+                f.formulation,
+                f.metric,
+                f.order.map_or_else(
+                    || format!("- ({})", f.reason.as_deref().unwrap_or("")),
+                    |o| format!("{o:.3}")
+                )
+            )?;
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,744 @@
+//! The largest stable and the largest accurate step of a variant on a scene (issue 4).
+//!
+//! Horizon: `t_h` = `[stability].periods` periods of the scene's fastest linearised mode
+//! (`model::linear_modes`). A fixed-step variant is probed with `n` steps of `dt = t_h / n`
+//! (integer step counts, so every probe is deterministic and lands on `t_h`), observed at
+//! `SCORE_POINTS` score times `k_j = floor(j n / M)` (every step when `n < M`). A probe is
+//! - *stable* when the run ends without a typed failure and, at every score time, the state
+//!   is finite and `|E - E0| / max(|E0|, energy_scale) < ENERGY_BOUND` (= 1);
+//! - *accurate* when it is stable and the geodesic rotation error against an on-the-fly
+//!   reference stays below the case's `rotation_error_max` at every score time. The reference
+//!   is `dop853` on `so3`/`body` at `REFERENCE_TOL` (1e-12), interpolated by its dense output at
+//!   the probe's own score times; its accuracy is checked against the stored references in
+//!   the tests (well below the 0.1 rad bounds it judges).
+//!
+//! Search: a geometric ladder `n = CAP_STEPS * 2^j` (the cap `dt = t_h / 20`), up to the first
+//! passing `n` (at most `MAX_STEPS`), then bisection on `n` between the last failing and the
+//! first passing count until they differ by less than 5 % (`RESOLUTION`); the result is `t_h`
+//! over the passing count. When the cap itself passes the variant is "bounded up to the cap"
+//! (the A-stable implicit methods, the energy-conserving ones). The search assumes the
+//! verdict is monotone in the step near the boundary; where it is not (a step can land past a
+//! singular set by luck), the result is the first passing step from the coarse side, which is
+//! what a user stepping down from a coarse step would find. The accurate search starts from the
+//! stable count. Adaptive variants are searched on their tolerance the same way: from
+//! `TOL_CAP` (1) down by decades to `TOL_FLOOR`, then bisection in `log tol`.
+//!
+//! Explicit Euler has no stability interval on the imaginary axis (`|1 + i w h| > 1` for every
+//! `h > 0`): on an undamped oscillation it always grows, so its "stable" step is set by the
+//! energy bound alone: amplitude growth `(1 + w^2 h^2)^(n/2) ~ exp(w^2 h t_h / 2)` over the
+//! horizon, i.e. `h ~ 1 / (w^2 t_h)`.
+//!
+//! What limits each result is in the record's `metric_reasons` under the metric's name (the
+//! failure kind or the bound crossed at the first failing step beyond it, with its time), or
+//! why the metric is null (nothing passed down to `MAX_STEPS`).
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use crate::case::{Case, StabilitySpec};
+use crate::integrate::{Failure, FailureKind};
+use crate::math::so3;
+use crate::model::linear_modes;
+use crate::registry::{self, Variant};
+use crate::run::{Observe, RunOutput, Sample};
+use crate::suite::ScenePlan;
+use crate::summary::{Record, Status};
+
+/// Score times over the horizon.
+pub const SCORE_POINTS: u64 = 200;
+/// The coarsest step tried: `t_h / CAP_STEPS`.
+pub const CAP_STEPS: u64 = 20;
+/// The finest step tried: `t_h / MAX_STEPS` (full tier; about 2e7 steps).
+pub const MAX_STEPS: u64 = 20 * (1 << 20);
+/// The same in the quick tier (about 3e5 steps: explicit Euler's accurate step is then
+/// usually "nothing passed").
+pub const QUICK_MAX_STEPS: u64 = 20 * (1 << 14);
+/// Bisection stops when the failing and passing values differ by less than this ratio.
+pub const RESOLUTION: f64 = 1.05;
+/// Relative energy error that counts as unbounded growth.
+pub const ENERGY_BOUND: f64 = 1.0;
+/// The loosest tolerance tried (adaptive variants).
+pub const TOL_CAP: f64 = 1.0;
+/// The tightest tolerance tried.
+pub const TOL_FLOOR: f64 = 1e-13;
+/// Tolerance of the on-the-fly reference.
+pub const REFERENCE_TOL: f64 = 1e-12;
+
+/// One scene of the study: its plan with the grid stretched to the horizon.
+#[derive(Debug, Clone)]
+pub struct StudyScene {
+    /// The plan; `setup.grid.t_end` is the horizon `t_h`.
+    pub plan: ScenePlan,
+    /// `t_h` (s).
+    pub horizon: f64,
+    /// The fastest linearised period (s).
+    pub period: f64,
+    pub spec: StabilitySpec,
+    /// The finest step count tried (`MAX_STEPS`, or `QUICK_MAX_STEPS`).
+    pub max_steps: u64,
+}
+
+impl StudyScene {
+    /// The study scene of a planned scene of `c`: `t_h = periods x fastest period`. None when
+    /// the case has no `[stability]` table; an error when the scene has no time scale.
+    pub fn new(c: &Case, plan: &ScenePlan) -> Result<Option<StudyScene>, String> {
+        let Some(spec) = &c.stability else {
+            return Ok(None);
+        };
+        let period = linear_modes::fastest_period(&plan.setup.body, &plan.setup.initial)
+            .ok_or_else(|| {
+                format!(
+                    "{}: [stability]: scene {} has no time scale (no elastic mode, no rotation)",
+                    c.file, plan.scene
+                )
+            })?;
+        Ok(Some(Self::with_horizon(
+            plan,
+            period,
+            spec.periods * period,
+            spec,
+        )))
+    }
+
+    /// The study scene with an explicit horizon (the stiffness ladder's fixed-horizon runs).
+    pub fn with_horizon(
+        plan: &ScenePlan,
+        period: f64,
+        horizon: f64,
+        spec: &StabilitySpec,
+    ) -> StudyScene {
+        let mut plan = plan.clone();
+        plan.setup.grid.t_end = horizon;
+        plan.setup.grid.score_every = horizon;
+        plan.setup.grid.sample_every = horizon;
+        StudyScene {
+            plan,
+            horizon,
+            period,
+            spec: spec.clone(),
+            max_steps: MAX_STEPS,
+        }
+    }
+
+    /// The same with the step budget of a tier.
+    pub fn tier(mut self, quick: bool) -> StudyScene {
+        self.max_steps = if quick { QUICK_MAX_STEPS } else { MAX_STEPS };
+        self
+    }
+}
+
+/// The score-time step indices of a run of `n` steps (strictly ascending, in `(0, n)`).
+pub fn score_indices(n: u64) -> Arc<[u64]> {
+    let m = SCORE_POINTS.min(n);
+    let mut v: Vec<u64> = (1..m)
+        .map(|j| ((j as u128 * n as u128) / m as u128) as u64)
+        .collect();
+    v.dedup();
+    v.into()
+}
+
+/// Why a probe failed, for `metric_reasons`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Limit {
+    /// A failure kind (`non_finite`, `newton_failure` ...) or `bound_exceeded`.
+    pub kind: FailureKind,
+    pub t: f64,
+    pub message: String,
+}
+
+impl Limit {
+    fn from_failure(f: &Failure) -> Limit {
+        Limit {
+            kind: f.kind,
+            t: f.t,
+            message: f.message.clone(),
+        }
+    }
+    fn text(&self, at: &str) -> String {
+        let kind = serde_json::to_value(self.kind)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_string))
+            .unwrap_or_default();
+        format!("{kind} at t = {:.6} with {at}: {}", self.t, self.message)
+    }
+}
+
+/// A probe's verdict.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Verdict {
+    Pass,
+    Fail(Limit),
+    /// The probe could not be judged (the on-the-fly reference failed, a grid the run
+    /// refused): the search stops and its metric is null with this reason.
+    Error(String),
+}
+
+/// The on-the-fly reference of a scene: `dop853`/`so3`/`body` at `REFERENCE_TOL`, observed on
+/// `REFERENCE_POINTS` uniform times over the horizon and interpolated between them by cubic
+/// Hermite on the quaternion (`q' = q (0, omega) / 2`, then normalised): with `w dt_ref` at
+/// most 2 pi 20 / 20000 = 6e-3 over a horizon of 20 periods, the interpolation error is about
+/// `(w dt_ref)^4 / 384 ~ 4e-12` rad, far below the 0.1 rad bounds it judges (the fixed 10 s
+/// horizon of the stiffest ladder scene, `w dt_ref ~ 0.2`, gives ~4e-6). Computed once per
+/// scene, on first use.
+pub struct OnTheFly {
+    dense: std::sync::OnceLock<Result<Vec<Sample>, String>>,
+}
+
+/// Uniform reference samples over the horizon.
+pub const REFERENCE_POINTS: u64 = 20_000;
+
+impl Default for OnTheFly {
+    fn default() -> Self {
+        OnTheFly {
+            dense: std::sync::OnceLock::new(),
+        }
+    }
+}
+
+impl OnTheFly {
+    /// The reference rotation at time `t` of the horizon.
+    pub fn rotation_at(
+        &self,
+        scene: &StudyScene,
+        t: f64,
+    ) -> Result<nalgebra::UnitQuaternion<f64>, String> {
+        let samples = self
+            .dense
+            .get_or_init(|| reference_samples(scene))
+            .as_ref()
+            .map_err(Clone::clone)?;
+        let dt = scene.horizon / REFERENCE_POINTS as f64;
+        let i = ((t / dt).floor() as usize).min(samples.len() - 2);
+        let (a, b) = (&samples[i], &samples[i + 1]);
+        Ok(hermite(a, b, t))
+    }
+}
+
+/// Cubic Hermite interpolation of the rotation between two samples.
+fn hermite(a: &Sample, b: &Sample, t: f64) -> nalgebra::UnitQuaternion<f64> {
+    use nalgebra::Quaternion;
+    let h = b.t - a.t;
+    let s = ((t - a.t) / h).clamp(0.0, 1.0);
+    let rate = |x: &Sample| {
+        let w = x.obs.omega;
+        x.obs.q.into_inner() * Quaternion::new(0.0, w[0], w[1], w[2]) * 0.5
+    };
+    let qa = a.obs.q.into_inner();
+    // The samples come from one continuous chart run: flip b only if a sign jump slipped in.
+    let sign = if qa.dot(&b.obs.q.into_inner()) < 0.0 {
+        -1.0
+    } else {
+        1.0
+    };
+    let qb = b.obs.q.into_inner() * sign;
+    let (da, db) = (rate(a), rate(b) * sign);
+    let s2 = s * s;
+    let s3 = s2 * s;
+    let q = qa * (2.0 * s3 - 3.0 * s2 + 1.0)
+        + da * (h * (s3 - 2.0 * s2 + s))
+        + qb * (-2.0 * s3 + 3.0 * s2)
+        + db * (h * (s3 - s2));
+    nalgebra::UnitQuaternion::from_quaternion(q)
+}
+
+fn reference_samples(scene: &StudyScene) -> Result<Vec<Sample>, String> {
+    let v = registry::find("so3", "dop853", "body").ok_or("dop853/so3/body is not registered")?;
+    let n = REFERENCE_POINTS;
+    let at: Vec<u64> = (1..n).collect();
+    let mut setup = scene.plan.setup.clone();
+    setup.observe = Observe::Steps { n, at: at.into() };
+    let out = (v.run)(&setup, REFERENCE_TOL)?;
+    if let Some(f) = &out.failure {
+        return Err(format!(
+            "the on-the-fly reference (dop853/so3/body, tol {REFERENCE_TOL:e}) failed: {:?} at t = {}: {}",
+            f.kind, f.t, f.message
+        ));
+    }
+    if out.samples.len() != n as usize + 1 {
+        return Err(format!(
+            "the on-the-fly reference has {} samples, expected {}",
+            out.samples.len(),
+            n + 1
+        ));
+    }
+    Ok(out.samples)
+}
+
+/// Runs `v` over the horizon observed at the score times of `n` steps; `value` is the step
+/// (fixed: `t_h / n`) or the tolerance (adaptive).
+fn observe_run(v: &Variant, scene: &StudyScene, n: u64, value: f64) -> Result<RunOutput, String> {
+    let mut setup = scene.plan.setup.clone();
+    setup.observe = Observe::Steps {
+        n,
+        at: score_indices(n),
+    };
+    (v.run)(&setup, value)
+}
+
+/// The probe of `v` with `n` steps (fixed) or at tolerance `tol` (adaptive, observed at
+/// `SCORE_POINTS` uniform times), judged stable, and accurate when `reference` is given.
+pub fn probe(
+    v: &Variant,
+    scene: &StudyScene,
+    n_or_tol: Probe,
+    reference: Option<&OnTheFly>,
+) -> Verdict {
+    let (n, value) = match n_or_tol {
+        Probe::Steps(n) => (n, scene.horizon / n as f64),
+        Probe::Tol(tol) => (SCORE_POINTS, tol),
+    };
+    let out = match observe_run(v, scene, n, value) {
+        Ok(o) => o,
+        Err(message) => return Verdict::Error(message),
+    };
+    if let Some(f) = &out.failure {
+        return Verdict::Fail(Limit::from_failure(f));
+    }
+    let body = &scene.plan.setup.body;
+    let e0 = body.energy(&out.samples[0].obs);
+    let scale = e0.abs().max(scene.plan.energy_scale);
+    for s in &out.samples {
+        let d = (body.energy(&s.obs) - e0).abs() / scale;
+        if d.is_nan() || d >= ENERGY_BOUND {
+            return Verdict::Fail(Limit {
+                kind: FailureKind::BoundExceeded,
+                t: s.t,
+                message: format!(
+                    "energy error |E - E0| / max(|E0|, energy_scale) = {d:.3e} >= {ENERGY_BOUND}"
+                ),
+            });
+        }
+    }
+    let Some(reference) = reference else {
+        return Verdict::Pass;
+    };
+    let bound = scene.spec.rotation_error_max;
+    for s in &out.samples {
+        let r = match reference.rotation_at(scene, s.t) {
+            Ok(r) => r,
+            Err(e) => return Verdict::Error(e),
+        };
+        let e = so3::geodesic_quat(&s.obs.q, &r);
+        if e.is_nan() || e >= bound {
+            return Verdict::Fail(Limit {
+                kind: FailureKind::BoundExceeded,
+                t: s.t,
+                message: format!("rotation error {e:.3e} rad >= {bound} rad"),
+            });
+        }
+    }
+    Verdict::Pass
+}
+
+/// A probe point: a step count or a tolerance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Probe {
+    Steps(u64),
+    Tol(f64),
+}
+
+/// The outcome of one search.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Found {
+    /// The largest passing step (or tolerance); None when nothing passed.
+    pub value: Option<f64>,
+    /// The step count that passed (fixed-step searches).
+    pub n: Option<u64>,
+    /// The passing value is the cap (no failure at any step tried).
+    pub capped: bool,
+    /// What failed at the next coarser probe, and where (none when capped).
+    pub limit: Option<(String, Limit)>,
+    /// Probes run.
+    pub probes: u32,
+    /// Why the search could not be completed (`Verdict::Error`).
+    pub error: Option<String>,
+}
+
+impl Found {
+    fn error(e: String, probes: u32) -> Found {
+        Found {
+            value: None,
+            n: None,
+            capped: false,
+            limit: None,
+            probes,
+            error: Some(e),
+        }
+    }
+
+    /// The sentence for `metric_reasons`.
+    pub fn reason(&self, horizon: f64) -> String {
+        if let Some(e) = &self.error {
+            return format!("search not completed: {e}");
+        }
+        match (&self.value, self.capped, &self.limit) {
+            (Some(_), true, _) => format!(
+                "bounded up to the cap (dt = t_h / {CAP_STEPS}, tol = {TOL_CAP:e}; t_h = {horizon:.6} s)"
+            ),
+            (Some(_), false, Some((at, l))) => format!("limited by {}", l.text(at)),
+            (None, _, Some((at, l))) => format!("nothing passed: {}", l.text(at)),
+            _ => "nothing passed".into(),
+        }
+    }
+}
+
+/// Bisection-and-ladder search over step counts from `n_start` up, for the first `n` that
+/// passes `pass`.
+fn search_steps(
+    n_start: u64,
+    max_steps: u64,
+    mut pass: impl FnMut(u64) -> Verdict,
+    horizon: f64,
+) -> Found {
+    let mut probes = 0;
+    let mut last_fail: Option<(u64, Limit)> = None;
+    let mut n = n_start;
+    let n_pass = loop {
+        probes += 1;
+        match pass(n) {
+            Verdict::Pass => break Some(n),
+            Verdict::Fail(l) => last_fail = Some((n, l)),
+            Verdict::Error(e) => return Found::error(e, probes),
+        }
+        if n >= max_steps {
+            break None;
+        }
+        n = (n * 2).min(max_steps);
+    };
+    let Some(mut hi) = n_pass else {
+        return Found {
+            value: None,
+            n: None,
+            capped: false,
+            limit: last_fail.map(|(n, l)| (format!("n = {n} steps"), l)),
+            probes,
+            error: None,
+        };
+    };
+    let Some((mut lo, mut lo_limit)) = last_fail else {
+        return Found {
+            value: Some(horizon / hi as f64),
+            n: Some(hi),
+            capped: hi == CAP_STEPS,
+            limit: None,
+            probes,
+            error: None,
+        };
+    };
+    while hi - lo > 1 && (hi as f64) / (lo as f64) >= RESOLUTION {
+        let mid = lo + (hi - lo) / 2;
+        probes += 1;
+        match pass(mid) {
+            Verdict::Pass => hi = mid,
+            Verdict::Fail(l) => {
+                lo = mid;
+                lo_limit = l;
+            }
+            Verdict::Error(e) => return Found::error(e, probes),
+        }
+    }
+    Found {
+        value: Some(horizon / hi as f64),
+        n: Some(hi),
+        capped: false,
+        limit: Some((
+            format!("dt = {:.6e} (n = {lo})", horizon / lo as f64),
+            lo_limit,
+        )),
+        probes,
+        error: None,
+    }
+}
+
+/// The same over tolerances, from `tol_start` down.
+fn search_tol(tol_start: f64, mut pass: impl FnMut(f64) -> Verdict) -> Found {
+    let mut probes = 0;
+    let mut last_fail: Option<(f64, Limit)> = None;
+    let mut tol = tol_start;
+    let t_pass = loop {
+        probes += 1;
+        match pass(tol) {
+            Verdict::Pass => break Some(tol),
+            Verdict::Fail(l) => last_fail = Some((tol, l)),
+            Verdict::Error(e) => return Found::error(e, probes),
+        }
+        if tol <= TOL_FLOOR * 1.000001 {
+            break None;
+        }
+        tol = (tol / 10.0).max(TOL_FLOOR);
+    };
+    let Some(mut good) = t_pass else {
+        return Found {
+            value: None,
+            n: None,
+            capped: false,
+            limit: last_fail.map(|(t, l)| (format!("tol = {t:.3e}"), l)),
+            probes,
+            error: None,
+        };
+    };
+    let Some((mut bad, mut bad_limit)) = last_fail else {
+        return Found {
+            value: Some(good),
+            n: None,
+            capped: good == TOL_CAP,
+            limit: None,
+            probes,
+            error: None,
+        };
+    };
+    while bad / good >= RESOLUTION {
+        let mid = (bad * good).sqrt();
+        probes += 1;
+        match pass(mid) {
+            Verdict::Pass => good = mid,
+            Verdict::Fail(l) => {
+                bad = mid;
+                bad_limit = l;
+            }
+            Verdict::Error(e) => return Found::error(e, probes),
+        }
+    }
+    Found {
+        value: Some(good),
+        n: None,
+        capped: false,
+        limit: Some((format!("tol = {bad:.3e}"), bad_limit)),
+        probes,
+        error: None,
+    }
+}
+
+/// Both searches of one variant on one scene: (largest stable, largest accurate).
+pub fn search(v: &Variant, scene: &StudyScene, reference: &OnTheFly) -> (Found, Found) {
+    if v.info.adaptive {
+        let stable = search_tol(TOL_CAP, |tol| probe(v, scene, Probe::Tol(tol), None));
+        let start = stable.value.unwrap_or(TOL_FLOOR);
+        let accurate = search_tol(start, |tol| {
+            probe(v, scene, Probe::Tol(tol), Some(reference))
+        });
+        (stable, accurate)
+    } else {
+        let h = scene.horizon;
+        let stable = search_steps(
+            CAP_STEPS,
+            scene.max_steps,
+            |n| probe(v, scene, Probe::Steps(n), None),
+            h,
+        );
+        let Some(n0) = stable.n else {
+            let none = Found {
+                value: None,
+                n: None,
+                capped: false,
+                limit: stable.limit.clone(),
+                probes: 0,
+                error: stable.error.clone(),
+            };
+            return (stable, none);
+        };
+        let accurate = search_steps(
+            n0,
+            scene.max_steps,
+            |n| probe(v, scene, Probe::Steps(n), Some(reference)),
+            h,
+        );
+        (stable, accurate)
+    }
+}
+
+/// The metric names of a variant's record: `largest_stable_dt`/`_tol` and
+/// `largest_accurate_dt`/`_tol`.
+pub fn metric_names(adaptive: bool) -> (&'static str, &'static str) {
+    if adaptive {
+        ("largest_stable_tol", "largest_accurate_tol")
+    } else {
+        ("largest_stable_dt", "largest_accurate_dt")
+    }
+}
+
+/// Every metric name the search writes (the gate's known names).
+pub const METRICS: &[&str] = &[
+    "largest_stable_dt",
+    "largest_accurate_dt",
+    "largest_stable_tol",
+    "largest_accurate_tol",
+    "stability_horizon",
+    "fastest_period",
+];
+
+/// The record of one search (`dt`/`tol` absent: the record is per variant, not per ladder
+/// point).
+pub fn record(v: &Variant, scene: &StudyScene, stable: &Found, accurate: &Found) -> Record {
+    let (sm, am) = metric_names(v.info.adaptive);
+    let mut metrics = BTreeMap::new();
+    let mut reasons = BTreeMap::new();
+    for (name, f) in [(sm, stable), (am, accurate)] {
+        metrics.insert(name.to_string(), f.value);
+        reasons.insert(name.to_string(), f.reason(scene.horizon));
+    }
+    metrics.insert("stability_horizon".into(), Some(scene.horizon));
+    metrics.insert("fastest_period".into(), Some(scene.period));
+    Record {
+        case: scene.plan.case.clone(),
+        scene: scene.plan.scene.clone(),
+        param: v.param.into(),
+        integrator: v.integrator.into(),
+        formulation: v.formulation.into(),
+        dt: None,
+        tol: None,
+        status: Status::Ok,
+        failure: None,
+        reason: None,
+        metrics,
+        metric_reasons: reasons,
+        stats: crate::integrate::Stats::default(),
+        wall_s: None,
+        inputs_sha256: scene.plan.inputs_sha256.clone(),
+        reference_sha256: None,
+        series: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fail(n: f64) -> Verdict {
+        Verdict::Fail(Limit {
+            kind: FailureKind::NonFinite,
+            t: n,
+            message: "synthetic".into(),
+        })
+    }
+
+    /// The score indices are strictly ascending inside (0, n), one per score time (every step
+    /// below `SCORE_POINTS` steps).
+    #[test]
+    fn score_indices_cover_the_horizon() {
+        for n in [1u64, 2, 20, 199, 200, 201, 1000, 20_971_520] {
+            let at = score_indices(n);
+            assert!(at.windows(2).all(|w| w[0] < w[1]), "n = {n}");
+            assert!(at.iter().all(|&k| k > 0 && k < n), "n = {n}");
+            assert_eq!(at.len() as u64, SCORE_POINTS.min(n) - 1, "n = {n}");
+        }
+    }
+
+    /// The step search finds the boundary of a monotone verdict to 5 % from the passing side,
+    /// reports the failure just beyond it, flags a passing cap, and gives None when nothing
+    /// passes within the budget.
+    #[test]
+    fn step_search_brackets_the_boundary() {
+        let f = search_steps(
+            CAP_STEPS,
+            1 << 20,
+            |n| {
+                if n >= 1377 {
+                    Verdict::Pass
+                } else {
+                    fail(n as f64)
+                }
+            },
+            10.0,
+        );
+        let n = f.n.unwrap();
+        assert!(
+            (1377..(1377.0 * RESOLUTION) as u64 + 1).contains(&n),
+            "{f:?}"
+        );
+        assert_eq!(f.value, Some(10.0 / n as f64));
+        let (_, limit) = f.limit.clone().unwrap();
+        assert!(
+            limit.t < 1377.0 && limit.t * RESOLUTION >= n as f64,
+            "{f:?}"
+        );
+        assert!(f.reason(10.0).starts_with("limited by non_finite"));
+        let capped = search_steps(CAP_STEPS, 1 << 20, |_| Verdict::Pass, 10.0);
+        assert!(capped.capped && capped.n == Some(CAP_STEPS));
+        assert!(capped.reason(10.0).starts_with("bounded up to the cap"));
+        let none = search_steps(CAP_STEPS, 640, |n| fail(n as f64), 10.0);
+        assert_eq!(none.value, None);
+        assert!(
+            none.reason(10.0).contains("nothing passed"),
+            "{}",
+            none.reason(10.0)
+        );
+        let err = search_steps(CAP_STEPS, 640, |_| Verdict::Error("broken".into()), 10.0);
+        assert_eq!(err.value, None);
+        assert!(err.reason(10.0).contains("broken"));
+    }
+
+    /// The tolerance search finds the largest passing tolerance to 5 %.
+    #[test]
+    fn tol_search_brackets_the_boundary() {
+        let f = search_tol(TOL_CAP, |tol| {
+            if tol <= 3e-5 {
+                Verdict::Pass
+            } else {
+                fail(tol)
+            }
+        });
+        let tol = f.value.unwrap();
+        assert!(tol <= 3e-5 && tol * RESOLUTION > 3e-5, "{f:?}");
+        let capped = search_tol(TOL_CAP, |_| Verdict::Pass);
+        assert!(capped.capped && capped.value == Some(TOL_CAP));
+    }
+
+    /// The on-the-fly reference (dop853/so3/body at 1e-12, Hermite-interpolated) agrees with
+    /// the stored, cross-checked reference of nine_spring/two_angles over its 10 s to 1e-8 rad,
+    /// far below the 0.1 rad bound it judges.
+    #[test]
+    fn on_the_fly_reference_matches_the_stored_one() {
+        let cases = crate::case::embedded().unwrap();
+        let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
+        let plan = crate::plan::scene_plan(c, c.scene("two_angles").unwrap()).unwrap();
+        let scene = StudyScene::new(c, &plan).unwrap().unwrap();
+        assert!(scene.horizon > 10.0);
+        let stored = crate::reference::load(
+            &crate::cli::default_references(),
+            "nine_spring",
+            "two_angles",
+            &plan.inputs_sha256,
+        )
+        .unwrap()
+        .reference;
+        let otf = OnTheFly::default();
+        let mut worst = 0.0_f64;
+        for (k, t) in stored.t.iter().enumerate() {
+            let q = stored.quaternion[k];
+            let qr = nalgebra::UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(
+                q[0], q[1], q[2], q[3],
+            ));
+            worst = worst.max(so3::geodesic_quat(
+                &otf.rotation_at(&scene, *t).unwrap(),
+                &qr,
+            ));
+        }
+        assert!(worst < 1e-8, "on-the-fly vs stored: {worst:e} rad");
+    }
+
+    /// Between two reference points the Hermite interpolant of a uniform spin is exact to
+    /// the interpolation order: error below 1e-10 at w dt = 1e-2.
+    #[test]
+    fn hermite_interpolates_a_spin() {
+        use crate::model::rigid_body::Observation;
+        let w = nalgebra::Vector3::new(0.3, -0.5, 0.8);
+        let at = |t: f64| Sample {
+            t,
+            obs: Observation {
+                q: crate::math::so3::exp_quat(&(w * t)),
+                x: nalgebra::Vector3::zeros(),
+                v: nalgebra::Vector3::zeros(),
+                omega: w,
+            },
+            conditioning: 1.0,
+            residual: None,
+        };
+        let h = 1e-2 / w.norm();
+        let (a, b) = (at(0.0), at(h));
+        for s in [0.1, 0.37, 0.5, 0.9] {
+            let got = hermite(&a, &b, s * h);
+            let e = so3::geodesic_quat(&got, &at(s * h).obs.q);
+            assert!(e < 1e-10, "s = {s}: {e:e}");
+        }
+    }
+}
