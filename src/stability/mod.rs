@@ -59,6 +59,16 @@ pub const QUICK_INTEGRATORS: &[&str] = &["euler", "rk4", "simo_wong"];
 
 /// `filter` narrowed to the quick tier's variants.
 pub fn quick_filter(filter: &crate::suite::VariantFilter) -> crate::suite::VariantFilter {
+    narrowed(filter, QUICK_PARAMS, QUICK_INTEGRATORS)
+}
+
+/// `filter` narrowed to `params` x `integrators` x `body` (each list kept where the user's
+/// filter is empty, intersected otherwise).
+pub fn narrowed(
+    filter: &crate::suite::VariantFilter,
+    params: &[&str],
+    integrators: &[&str],
+) -> crate::suite::VariantFilter {
     let meet = |user: &[String], ours: &[&str]| -> Vec<String> {
         ours.iter()
             .filter(|x| user.is_empty() || user.iter().any(|u| u == *x))
@@ -66,8 +76,8 @@ pub fn quick_filter(filter: &crate::suite::VariantFilter) -> crate::suite::Varia
             .collect()
     };
     crate::suite::VariantFilter {
-        param: meet(&filter.param, QUICK_PARAMS),
-        integrator: meet(&filter.integrator, QUICK_INTEGRATORS),
+        param: meet(&filter.param, params),
+        integrator: meet(&filter.integrator, integrators),
         formulation: meet(&filter.formulation, &["body"]),
     }
 }

@@ -15,7 +15,7 @@
 //! step that is neither capped (`t_h / 20` passed: no stability limit to measure) nor null;
 //! fewer than three such points give `order: null` with the reason.
 use super::search::{self, StudyScene};
-use super::{Part, StudyOptions, step_search};
+use super::{Part, StudyOptions, narrowed, step_search};
 use crate::case::Case;
 use crate::metrics::order::loglog_slope;
 use crate::suite::VariantFilter;
@@ -33,22 +33,6 @@ pub const FIXED_HORIZON: f64 = 10.0;
 /// The generated scene name of factor `10^j` (and of the fixed-horizon variant).
 pub fn scene_name(j: i32, fixed: bool) -> String {
     format!("{SCENE}_k1e{j}{}", if fixed { "_T10" } else { "" })
-}
-
-/// `filter` narrowed to `params` x `integrators` x `body` (each list kept where the user's
-/// filter is empty, intersected otherwise).
-fn narrowed(filter: &VariantFilter, params: &[&str], integrators: &[&str]) -> VariantFilter {
-    let meet = |user: &[String], ours: &[&str]| -> Vec<String> {
-        ours.iter()
-            .filter(|x| user.is_empty() || user.iter().any(|u| u == *x))
-            .map(|x| x.to_string())
-            .collect()
-    };
-    VariantFilter {
-        param: meet(&filter.param, params),
-        integrator: meet(&filter.integrator, integrators),
-        formulation: meet(&filter.formulation, &["body"]),
-    }
 }
 
 /// The stiffened case: every spring's stiffness times `10^j`.
