@@ -237,14 +237,13 @@ fn fixed_step<S: Observable, M: FixedStep<S>>(
     let r = method.step(sys, k as f64 * h, h, x, &mut out.stats);
     out.stats.steps += 1;
     let t1 = (k + 1) as f64 * h;
-    r.and_then(|_| {
+    let c = r.and_then(|_| {
         if sys.normalize(x) {
             out.stats.normalizations += 1;
         }
-        sys.check(t1, x)
-    })
-    .and_then(|_| limits.check(t1, &out.stats))?;
-    let c = sys.conditioning(x);
+        sys.check_conditioning(t1, x)
+    })?;
+    limits.check(t1, &out.stats)?;
     if c < out.conditioning_min {
         out.conditioning_min = c;
     }
@@ -331,11 +330,16 @@ impl<S: System> System for Watched<S> {
     #[inline]
     fn check(&self, t: f64, x: &S::State) -> Result<(), Failure> {
         use std::sync::atomic::Ordering::Relaxed;
-        let c = self.inner.conditioning(x);
-        if c < f64::from_bits(self.min_bits.load(Relaxed)) {
-            self.min_bits.store(c.to_bits(), Relaxed);
+        // A failed check still records the conditioning it saw (the singular-chart value).
+        let c = match self.inner.check_conditioning(t, x) {
+            Ok(c) => Ok(c),
+            Err(f) => Err((self.inner.conditioning(x), f)),
+        };
+        let seen = c.as_ref().map_or_else(|(c, _)| *c, |c| *c);
+        if seen < f64::from_bits(self.min_bits.load(Relaxed)) {
+            self.min_bits.store(seen.to_bits(), Relaxed);
         }
-        self.inner.check(t, x)
+        c.map(|_| ()).map_err(|(_, f)| f)
     }
     fn conditioning(&self, x: &S::State) -> f64 {
         self.inner.conditioning(x)

@@ -67,6 +67,13 @@ pub trait System: Send + Sync {
         let _ = x;
         1.0
     }
+    /// `check`, returning the conditioning it saw: the run loop tracks the minimum
+    /// conditioning every step, and a system whose `check` already computes it (the Euler
+    /// charts' `|cos b|`) overrides this to compute it once.
+    fn check_conditioning(&self, t: f64, x: &Self::State) -> Result<f64, Failure> {
+        self.check(t, x)?;
+        Ok(self.conditioning(x))
+    }
 }
 
 /// Why a run ended early (design.md, "Files": failure kinds).

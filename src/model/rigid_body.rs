@@ -309,6 +309,11 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
 
     #[inline]
     fn check(&self, t: f64, s: &Self::State) -> Result<(), Failure> {
+        self.check_conditioning(t, s).map(|_| ())
+    }
+
+    #[inline]
+    fn check_conditioning(&self, t: f64, s: &Self::State) -> Result<f64, Failure> {
         if !C::is_finite(&s.pose) || !s.vel.iter().all(|v| v.is_finite()) {
             return Err(Failure::new(
                 FailureKind::NonFinite,
@@ -324,7 +329,7 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
                 format!("{} chart conditioning {c:.3e} <= 1e-12", C::NAME),
             ));
         }
-        Ok(())
+        Ok(c)
     }
 
     #[inline(always)]
