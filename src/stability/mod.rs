@@ -10,7 +10,10 @@
 //!   the stiffness with fitted log-log slopes;
 //! - `long_horizon`: energy and momentum error over 10^6 - 10^7 steps at log-spaced times, with
 //!   fitted growth exponents (truncation drift ~ t, bounded ~ t^0, round-off random walk ~
-//!   t^(1/2)).
+//!   t^(1/2));
+//! - `singularity`: `gimbal_lock`'s spin at approach distances 1e-1 ... 1e-12, error, work and
+//!   conditioning against the distance;
+//! - `sensitivity`: the growth of a 1e-9 perturbation of each scene's initial state.
 //!
 //! Every part is deterministic: its records (all but `wall_s`, `created_utc`, `env`) do not
 //! depend on `--jobs`.
@@ -20,6 +23,8 @@ use crate::summary::{FitRecord, Record};
 
 pub mod long_horizon;
 pub mod search;
+pub mod sensitivity;
+pub mod singularity;
 pub mod stiffness;
 
 /// Options of the study.
@@ -189,7 +194,12 @@ pub fn run_study(
         let kept: Vec<crate::case::Case> =
             cases.iter().filter(|c| wanted(&c.name)).cloned().collect();
         all.extend(long_horizon::study(&kept, filter, opts)?);
+        if wanted(singularity::CASE) {
+            all.extend(singularity::study(cases, filter, opts)?);
+        }
     }
+    let plans = crate::plan::plans(cases, case_filter, scene_filter)?;
+    all.extend(sensitivity::study(cases, &plans, opts)?);
     let mut records = all.records;
     records.sort_by_key(record_order);
     for (rel, value) in &all.series {
