@@ -24,6 +24,36 @@ pub trait Observable: System {
     fn observe(&self, x: &Self::State) -> Observation;
     /// The chart's own constraint residual (None for minimal charts).
     fn residual(&self, x: &Self::State) -> Option<f64>;
+    /// The model's energy of an observation.
+    fn energy(&self, o: &Observation) -> f64;
+}
+
+/// A stability bound checked at every observation of an `Observe::Steps` run: the run ends
+/// with `bound_exceeded` as soon as `|E - E0| / max(|E0|, scale) >= max` (or is NaN), so a
+/// probe that has already blown up does not integrate on (an adaptive run at a loose
+/// tolerance can otherwise crawl on tiny steps to its work limit).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnergyWatch {
+    pub scale: f64,
+    pub max: f64,
+}
+
+impl EnergyWatch {
+    /// The failure when `s` crosses the bound relative to the initial energy `e0`.
+    fn judge<S: Observable>(&self, sys: &S, e0: f64, s: &Sample) -> Result<(), Failure> {
+        let d = (sys.energy(&s.obs) - e0).abs() / e0.abs().max(self.scale);
+        if d.is_nan() || d >= self.max {
+            return Err(Failure::new(
+                crate::integrate::FailureKind::BoundExceeded,
+                s.t,
+                format!(
+                    "energy error |E - E0| / max(|E0|, energy_scale) = {d:.3e} >= {}",
+                    self.max
+                ),
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// When a run observes its state.
@@ -38,7 +68,12 @@ pub enum Observe {
     /// search's `t_h / n`) or whose times are log-spaced (the long-horizon study). A
     /// fixed-step run must take `n` steps (its step is `t_end / n`); an adaptive run steps
     /// freely and interpolates there. The samples' `score_stride` is 1.
-    Steps { n: u64, at: std::sync::Arc<[u64]> },
+    Steps {
+        n: u64,
+        at: std::sync::Arc<[u64]>,
+        /// End the run when the energy bound is crossed at an observation.
+        watch: Option<EnergyWatch>,
+    },
 }
 
 /// How a run steps: a fixed step or an adaptive tolerance.
@@ -166,14 +201,14 @@ pub fn run_fixed<S: Observable, M: FixedStep<S>>(
 ) -> Result<RunOutput, String> {
     let n_total = divides(grid.t_end, h_nominal)
         .ok_or_else(|| format!("step {h_nominal} does not divide t_end = {}", grid.t_end))?;
-    if let Observe::Steps { n, at } = observe {
+    if let Observe::Steps { n, at, watch } = observe {
         if *n != n_total {
             return Err(format!(
                 "observation grid of {n} steps, but the step {h_nominal} takes {n_total}"
             ));
         }
         check_ascending(at)?;
-        return run_fixed_at(sys, method, x0, grid.t_end, n_total, at, limits);
+        return run_fixed_at(sys, method, x0, grid.t_end, n_total, at, *watch, limits);
     }
     let observe = *observe == Observe::Grid;
     let (dt_out, n_out, stride) = output_grid(grid, Some(h_nominal))?;
@@ -259,6 +294,7 @@ fn check_ascending(at: &[u64]) -> Result<(), String> {
 
 /// `run_fixed` with `Observe::Steps`: `n_total` steps of `t_end / n_total`, observed at step
 /// 0, at the listed indices and at the last step.
+#[allow(clippy::too_many_arguments)]
 fn run_fixed_at<S: Observable, M: FixedStep<S>>(
     sys: &S,
     method: &mut M,
@@ -266,6 +302,7 @@ fn run_fixed_at<S: Observable, M: FixedStep<S>>(
     t_end: f64,
     n_total: u64,
     at: &[u64],
+    watch: Option<EnergyWatch>,
     limits: &Limits,
 ) -> Result<RunOutput, String> {
     let h = t_end / n_total as f64;
@@ -282,6 +319,7 @@ fn run_fixed_at<S: Observable, M: FixedStep<S>>(
         return Ok(out);
     }
     out.samples.push(sample(sys, 0.0, &x));
+    let e0 = sys.energy(&out.samples[0].obs);
     let mut next = at
         .iter()
         .copied()
@@ -294,7 +332,12 @@ fn run_fixed_at<S: Observable, M: FixedStep<S>>(
         }
         if next.peek() == Some(&(k + 1)) || k + 1 == n_total {
             next.next();
-            out.samples.push(sample(sys, (k + 1) as f64 * h, &x));
+            let s = sample(sys, (k + 1) as f64 * h, &x);
+            out.samples.push(s);
+            if let Some(Err(f)) = watch.map(|w| w.judge(sys, e0, &s)) {
+                out.failure = Some(f);
+                return Ok(out);
+            }
         }
     }
     Ok(out)
@@ -374,18 +417,18 @@ pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
     limits: &Limits,
     observe: &Observe,
 ) -> Result<RunOutput, String> {
-    let (dt_out, n_out, stride, at) = match observe {
+    let (dt_out, n_out, stride, at, watch) = match observe {
         Observe::Grid => {
             let (d, n, s) = output_grid(grid, None)?;
-            (d, n, s, None)
+            (d, n, s, None, None)
         }
-        Observe::Final => (grid.t_end, 1, 1, None),
-        Observe::Steps { n, at } => {
+        Observe::Final => (grid.t_end, 1, 1, None, None),
+        Observe::Steps { n, at, watch } => {
             check_ascending(at)?;
             if *n == 0 {
                 return Err("an observation grid of 0 steps".into());
             }
-            (grid.t_end / *n as f64, *n, 1, Some(&at[..]))
+            (grid.t_end / *n as f64, *n, 1, Some(&at[..]), *watch)
         }
     };
     let w = Watched::new(sys.clone());
@@ -410,6 +453,7 @@ pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
         out.failure = Some(f);
         return Ok(out);
     }
+    let e0 = sys.energy(&out.samples[0].obs);
     let samples = &mut out.samples;
     let mut wanted = at.map(|a| a.iter().copied().filter(|&k| k > 0).peekable());
     let mut on_output = |k: u64, y: &S::State| {
@@ -423,7 +467,11 @@ pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
             }
         };
         if keep {
-            samples.push(sample(sys, k as f64 * dt_out, y));
+            let s = sample(sys, k as f64 * dt_out, y);
+            samples.push(s);
+            if let Some(w) = watch {
+                w.judge(sys, e0, &s)?;
+            }
         }
         Ok(())
     };

@@ -415,4 +415,7 @@ impl<C: PoseChart, F: Formulation> crate::run::Observable for RigidSystem<C, F> 
     fn residual(&self, s: &Self::State) -> Option<f64> {
         C::residual(&s.pose)
     }
+    fn energy(&self, o: &Observation) -> f64 {
+        self.body.energy(o)
+    }
 }

@@ -393,6 +393,7 @@ pub fn study(cases: &[Case], filter: &VariantFilter, opts: &StudyOptions) -> Res
             setup.observe = Observe::Steps {
                 n: steps,
                 at: Arc::from(sample_steps(steps, SAMPLES)),
+                watch: None,
             };
             setup.limits = Limits {
                 max_steps: steps,

@@ -245,7 +245,11 @@ fn reference_samples(scene: &StudyScene) -> Result<Vec<Sample>, String> {
     let n = REFERENCE_POINTS;
     let at: Vec<u64> = (1..n).collect();
     let mut setup = scene.plan.setup.clone();
-    setup.observe = Observe::Steps { n, at: at.into() };
+    setup.observe = Observe::Steps {
+        n,
+        at: at.into(),
+        watch: None,
+    };
     let out = (v.run)(&setup, REFERENCE_TOL)?;
     if let Some(f) = &out.failure {
         return Err(format!(
@@ -263,6 +267,18 @@ fn reference_samples(scene: &StudyScene) -> Result<Vec<Sample>, String> {
     Ok(out.samples)
 }
 
+/// The work budget of one probe: the tier's step budget, for adaptive runs too (an adaptive
+/// run that needs more steps than the finest fixed step tried is not a stable setting at
+/// its tolerance: at loose tolerances some charts crawl on tiny steps, which the default
+/// budget of 1e8 steps turned into searches of several minutes), and 16 RHS evaluations a
+/// step (dop853's 12 plus rejections; Newton iterations are counted separately).
+pub fn probe_limits(max_steps: u64) -> crate::integrate::Limits {
+    crate::integrate::Limits {
+        max_steps,
+        max_rhs_evals: max_steps.saturating_mul(16),
+    }
+}
+
 /// Runs `v` over the horizon observed at the score times of `n` steps; `value` is the step
 /// (fixed: `t_h / n`) or the tolerance (adaptive).
 fn observe_run(v: &Variant, scene: &StudyScene, n: u64, value: f64) -> Result<RunOutput, String> {
@@ -270,7 +286,12 @@ fn observe_run(v: &Variant, scene: &StudyScene, n: u64, value: f64) -> Result<Ru
     setup.observe = Observe::Steps {
         n,
         at: score_indices(n),
+        watch: Some(crate::run::EnergyWatch {
+            scale: scene.plan.energy_scale,
+            max: ENERGY_BOUND,
+        }),
     };
+    setup.limits = probe_limits(scene.max_steps);
     (v.run)(&setup, value)
 }
 
