@@ -443,7 +443,12 @@ fn cmd_report(
     let out = out.map(|p| p.to_path_buf()).unwrap_or_else(|| dir.clone());
     let opts =
         crate::gate::GateOptions::new(common.references.clone().unwrap_or_else(default_references));
-    let rows = match crate::gate::evaluate(&cases, &summary, None, &opts) {
+    // stability.json beside the summary: its part of the report; unusable = a warning.
+    let (stability, warning) = crate::report::stability::load_beside(summary_path);
+    if let Some(w) = warning {
+        eprintln!("{w}");
+    }
+    let rows = match crate::gate::evaluate(&cases, &summary, stability.as_ref(), &opts) {
         Ok(rows) => Some(
             rows.into_iter()
                 .filter(|r| r.value.is_some() || !r.note.contains("no record"))
@@ -455,9 +460,21 @@ fn cmd_report(
         }
     };
     let t0 = std::time::Instant::now();
-    let files =
-        crate::report::write_report(&summary, &dir.join("series"), &cases, rows.as_deref(), &out)
-            .map_err(|e| e.to_string())?;
+    let source = stability
+        .as_ref()
+        .map(|s| crate::report::stability::Source {
+            summary: s,
+            dir: &dir,
+        });
+    let files = crate::report::write_report(
+        &summary,
+        &dir.join("series"),
+        &cases,
+        rows.as_deref(),
+        source,
+        &out,
+    )
+    .map_err(|e| e.to_string())?;
     println!(
         "report: {} ({} SVGs, {} ) in {:.1} s",
         files.index_html.display(),

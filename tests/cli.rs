@@ -305,3 +305,35 @@ fn stored_references_check() {
         );
     }
 }
+
+/// `mbdbench report` with a corrupt stability.json beside the summary warns on stderr (naming
+/// the file), still writes the whole report without a stability part and exits 0.
+#[test]
+fn report_with_corrupt_stability_json_warns_and_goes_on() {
+    let d = common::temp_dir("report-corrupt-stability");
+    let summary = mbdbench::summary::Summary {
+        schema: 1,
+        git_commit: "abc1234".into(),
+        created_utc: "2026-01-02T03:04:05Z".into(),
+        env: mbdbench::summary::Env::current(1),
+        records: vec![],
+        fits: vec![],
+    };
+    let path = d.join("summary.json");
+    std::fs::write(&path, serde_json::to_string(&summary).unwrap()).unwrap();
+    std::fs::write(d.join("stability.json"), "{\"schema\": 1, \"records\": [").unwrap();
+    let out = d.join("report");
+    let o = run(&[
+        "report",
+        "--summary",
+        path.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(0), "{e}");
+    assert!(e.contains("warning") && e.contains("stability.json"), "{e}");
+    let page = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(!page.contains("data-section=\"stability"));
+    assert!(out.join("summary.md").is_file());
+}

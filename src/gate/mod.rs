@@ -344,13 +344,19 @@ fn expand<'p>(
 
 /// Records of the summary, then of the stability summary, by (case, scene, variant).
 struct RecordIndex<'a> {
-    map: BTreeMap<(&'a str, &'a str, &'a str, &'a str, &'a str), Vec<&'a Record>>,
+    /// Records by variant, each with whether it comes from the stability summary.
+    map: BTreeMap<(&'a str, &'a str, &'a str, &'a str, &'a str), Vec<(&'a Record, bool)>>,
 }
 
 impl<'a> RecordIndex<'a> {
     fn new(summary: &'a Summary, stability: Option<&'a Summary>) -> Self {
-        let mut map: BTreeMap<_, Vec<&Record>> = BTreeMap::new();
-        for r in all_records(summary, stability) {
+        let mut map: BTreeMap<_, Vec<(&Record, bool)>> = BTreeMap::new();
+        let tagged = summary.records.iter().map(|r| (r, false)).chain(
+            stability
+                .into_iter()
+                .flat_map(|s| s.records.iter().map(|r| (r, true))),
+        );
+        for (r, from_stability) in tagged {
             map.entry((
                 r.case.as_str(),
                 r.scene.as_str(),
@@ -359,12 +365,15 @@ impl<'a> RecordIndex<'a> {
                 r.formulation.as_str(),
             ))
             .or_default()
-            .push(r);
+            .push((r, from_stability));
         }
         RecordIndex { map }
     }
 
-    /// The record of a point; among several, the first that carries `metric`.
+    /// The record of a point; among several, the first that carries `metric`. A stability
+    /// record is a candidate only when it carries the metric: the study's other records at a
+    /// step or tolerance (a long-horizon run, a sensitivity run) are not the catalogue's
+    /// ladder runs, and must not stand in for a missing one.
     fn find(&self, case: &str, p: &Point, metric: &str) -> Option<&'a Record> {
         let v = p.variant;
         let list = self.map.get(&(
@@ -374,18 +383,18 @@ impl<'a> RecordIndex<'a> {
             v.integrator,
             v.formulation,
         ))?;
-        let at = |r: &&&Record| {
+        let at = |(r, from_stability): &&(&Record, bool)| {
             let x = if v.info.adaptive { r.tol } else { r.dt };
-            match p.value {
+            let here = match p.value {
                 Some(want) => x.is_some_and(|x| same_value(x, want)),
                 None => r.dt.is_none() && r.tol.is_none(),
-            }
+            };
+            here && (!from_stability || r.metrics.contains_key(metric))
         };
-        let mut candidates = list.iter().filter(at);
-        let first = candidates.clone().next().copied();
+        let mut candidates = list.iter().filter(at).map(|(r, _)| *r);
+        let first = candidates.clone().next();
         candidates
             .find(|r| r.metrics.contains_key(metric))
-            .copied()
             .or(first)
     }
 }
@@ -838,6 +847,32 @@ mod tests {
         stale.inputs_sha256 = "0".repeat(64);
         let rows = eval(vec![stale]);
         assert!(rows[0].note.starts_with("stale"), "{}", rows[0].note);
+    }
+
+    /// A stability record at a ladder point that does not carry the gated metric (a
+    /// sensitivity run at tol 1e-6, say) does not stand in for the summary's missing run: the
+    /// point has no record.
+    #[test]
+    fn stability_record_without_the_metric_is_no_stand_in() {
+        let c = nine();
+        let mut s = passing(&c);
+        s.records
+            .retain(|r| !(r.param == "quat" && r.integrator == "dopri5"));
+        let mut other = fixture::record(
+            &c,
+            "two_angles",
+            ("quat", "dopri5", "body"),
+            None,
+            Some(1.0e-6),
+            &[("sensitivity_growth_max", 12.0)],
+            0,
+        );
+        other.reference_sha256 = None;
+        let st = fixture::summary(vec![other]);
+        let rows = evaluate(std::slice::from_ref(&c), &s, Some(&st), &opts(true)).unwrap();
+        let r = find(&rows, "conditioning_min", "quat");
+        assert_eq!(r.verdict, Verdict::Fail);
+        assert!(r.note.contains("no record"), "{}", r.note);
     }
 
     /// Records of the stability summary are searched too, and their metric names are known.

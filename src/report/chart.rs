@@ -2,7 +2,8 @@
 //! rendering to an SVG string.
 //!
 //! Layout (900 px wide, readable on a laptop): the chart on the left, the legend in a 240 px
-//! column on the right (outside the data), a one-line footer naming the commit and date.
+//! column on the right (outside the data; up to 330 px for long per-line labels), a one-line
+//! footer naming the commit and date.
 //! plotters draws the frame: caption, grid, axes with the explicit ticks of `axes` (through a
 //! small `Ranged` coordinate, `Ticked`), labels, legend text and footer. The data layer
 //! (lines, markers, failure marks, legend samples) is written as SVG elements at plotters'
@@ -35,6 +36,8 @@ use super::style::{self, INK, Marker};
 /// Total width of every plot (px).
 pub const WIDTH: u32 = 900;
 const LEGEND_W: u32 = 240;
+/// The widest legend column (long per-line labels widen it, the chart gives way).
+const LEGEND_W_MAX: u32 = 330;
 const MIN_HEIGHT: u32 = 440;
 const FOOTER_H: u32 = 18;
 const ROW_H: i32 = 15;
@@ -162,11 +165,12 @@ pub fn render(p: &Plot) -> Result<Rendered, DrawError> {
         let root = SVGBackend::with_string(&mut buf, (WIDTH, height)).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
         let (main, footer) = root.split_vertically(height - FOOTER_H);
-        let (plot_area, legend_area) = main.split_horizontally(WIDTH - LEGEND_W);
+        let legend_w = legend_width(&entries);
+        let (plot_area, legend_area) = main.split_horizontally(WIDTH - legend_w);
         draw_chart(p, &plot_area, &x, &y, &mut overlay)?;
         draw_legend(
             &legend_area,
-            (WIDTH - LEGEND_W) as i32,
+            (WIDTH - legend_w) as i32,
             &entries,
             &mut overlay,
         )?;
@@ -507,6 +511,20 @@ fn legend_entries(p: &Plot) -> Vec<Entry> {
         out.push(Entry::Heading("runs that failed (no value)".into()));
     }
     out
+}
+
+/// The legend column's width: `LEGEND_W`, or wider (up to `LEGEND_W_MAX`) for long sample
+/// texts (estimated at 6.6 px per character of the 12 px font, after the 48 px sample).
+fn legend_width(entries: &[Entry]) -> u32 {
+    let longest = entries
+        .iter()
+        .map(|e| match e {
+            Entry::Sample { text, .. } => 48 + text.chars().count() as u32 * 66 / 10,
+            Entry::Heading(t) => 8 + t.chars().count() as u32 * 66 / 10,
+        })
+        .max()
+        .unwrap_or(0);
+    (longest + 8).clamp(LEGEND_W, LEGEND_W_MAX)
 }
 
 fn draw_legend(

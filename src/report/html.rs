@@ -11,6 +11,7 @@
 //! their attributes (quoted or not), skips comments, and reports external references,
 //! scripts and embedded resources, `url(`/`@import` in CSS, and missing sections.
 use super::chart::Rendered;
+use super::stability::StabilitySection;
 use super::tables::{Table, Tone};
 use super::{CaseSection, Figure, Page};
 
@@ -60,6 +61,8 @@ td.msg{white-space:normal;min-width:320px}
 td.pass{background:#d4efd4}td.fail{background:#f6c8c8;font-weight:600}td.neutral{background:#f3f3f3}
 .narrative li{max-width:980px;margin:3px 0}
 .scene{border-left:3px solid #ddd;padding-left:12px}
+.stability{border-left:3px solid #c9d8ea;padding-left:12px}
+td[title]{text-decoration:underline dotted #999;cursor:help}
 ";
 
 fn env_p(env: &str) -> String {
@@ -124,7 +127,12 @@ pub fn table(t: &Table, open_below: usize) -> String {
             } else {
                 tone_class(c.tone)
             };
-            s.push_str(&format!("<td{class}>{}</td>", esc(&c.text)));
+            let title = c
+                .full
+                .as_ref()
+                .map(|f| format!(" title=\"{}\"", esc(f)))
+                .unwrap_or_default();
+            s.push_str(&format!("<td{class}{title}>{}</td>", esc(&c.text)));
         }
         s.push_str("</tr>\n");
     }
@@ -146,6 +154,55 @@ fn figures(kind: &str, title: &str, figs: &[Figure]) -> String {
         s.push_str(&figure(f));
     }
     s.push_str("</div>\n</div>\n");
+    s
+}
+
+/// The stability study's part of a case (`data-section="stability"`, its tables and plots
+/// inside with their own `data-section`s).
+fn stability_part(st: &StabilitySection) -> String {
+    let mut s =
+        String::from("<div data-section=\"stability\" class=\"stability\">\n<h3>Stability</h3>\n");
+    s.push_str(&env_p(&st.env_line));
+    s.push_str("<ul class=\"narrative\">\n");
+    for sentence in &st.text {
+        s.push_str(&format!("<li>{}</li>\n", esc(sentence)));
+    }
+    s.push_str("</ul>\n");
+    for t in st.steps.iter().filter(|t| t.open) {
+        s.push_str(&table(&t.table, 60));
+    }
+    let generated: Vec<_> = st.steps.iter().filter(|t| !t.open).collect();
+    if !generated.is_empty() {
+        s.push_str(&format!(
+            "<details><summary>{} generated scenes (stiffness ladder): their step tables</summary>\n",
+            generated.len()
+        ));
+        for t in generated {
+            s.push_str(&table(&t.table, 60));
+        }
+        s.push_str("</details>\n");
+    }
+    if !st.ladder.is_empty() {
+        s.push_str(&figures(
+            "stability-ladder",
+            "Stiffness ladder: largest steps against the stiffness factor",
+            &st.ladder,
+        ));
+    }
+    if !st.long_horizon.is_empty() {
+        s.push_str(&figures(
+            "stability-long-horizon-plots",
+            "Long horizon: energy and momentum error over time",
+            &st.long_horizon,
+        ));
+    }
+    for t in [&st.long_table, &st.other, &st.other_fits]
+        .into_iter()
+        .flatten()
+    {
+        s.push_str(&table(t, 40));
+    }
+    s.push_str("</div>\n");
     s
 }
 
@@ -213,6 +270,9 @@ fn case_section(c: &CaseSection, env: &str) -> String {
     }
     s.push_str(&table(&c.failures, 30));
     s.push_str(&table(&c.largest, 0));
+    if let Some(st) = &c.stability {
+        s.push_str(&stability_part(st));
+    }
     s.push_str(&table(&c.na, 30));
     s.push_str("</section>\n");
     s

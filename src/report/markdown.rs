@@ -1,7 +1,8 @@
 //! `summary.md`: the report's text and tables for a CI log or a pull-request comment
 //! (GitHub-flavoured Markdown): the environment line, per case the "what this shows"
 //! paragraph and the same tables as the HTML page (gates, failures, largest completed step,
-//! the matrix of each scene, n/a), long tables folded in `<details>` blocks. No plots: their
+//! the matrix of each scene, the stability study's tables, n/a), long tables folded in
+//! `<details>` blocks; a shortened cell is written in full. No plots: their
 //! SVG files are listed by path. Gate colours become `[pass]` / `[FAIL]` after the value.
 use super::tables::{Table, Tone};
 use super::{CaseSection, Page};
@@ -43,11 +44,13 @@ pub fn table(t: &Table, open_below: usize) -> String {
                     Tone::Fail => " [FAIL]",
                     Tone::Plain | Tone::Neutral => "",
                 };
+                // A shortened cell is written in full (no hover text in a CI log).
+                let text = c.full.as_deref().unwrap_or(&c.text);
                 // The gate table's verdict column already says pass/FAIL.
-                if !mark.is_empty() && (c.text == "pass" || c.text == "FAIL") {
-                    cell(&c.text)
+                if !mark.is_empty() && (text == "pass" || text == "FAIL") {
+                    cell(text)
                 } else {
-                    format!("{}{mark}", cell(&c.text))
+                    format!("{}{mark}", cell(text))
                 }
             })
             .collect();
@@ -78,8 +81,19 @@ fn case_section(c: &CaseSection, env: &str, svg_dir: &str) -> String {
     for sc in &c.scenes {
         s.push_str(&table(&sc.matrix, 0));
     }
+    if let Some(st) = &c.stability {
+        s.push_str(&format!("### Stability\n\n`{}`\n\n", st.env_line));
+        for sentence in &st.text {
+            s.push_str(&format!("- {sentence}\n"));
+        }
+        s.push('\n');
+        for t in st.tables() {
+            s.push_str(&table(t, 40));
+        }
+    }
     s.push_str(&table(&c.na, 20));
-    let n: usize = c.across.len()
+    let n: usize = c.stability.as_ref().map_or(0, |st| st.figures().count())
+        + c.across.len()
         + c.scenes
             .iter()
             .map(|x| x.work_precision.len() + x.convergence.len() + x.timeseries.len())
@@ -128,6 +142,7 @@ mod tests {
                 Cell {
                     text: "1e-9".into(),
                     tone: Tone::Fail,
+                    full: None,
                 },
             ]],
         };

@@ -8,7 +8,9 @@
 //! scene, work-precision (error vs wall time and vs RHS evaluations, `work_precision`),
 //! convergence with the fitted orders (`convergence`), energy drift and constraint residual
 //! over time (`timeseries`), and the variants x metrics matrix; then the failure table, the
-//! largest completed ladder step per variant, and the n/a combinations (`tables`). Colour =
+//! largest completed ladder step per variant, the stability study's part when a
+//! `stability.json` is given (`stability`: step-search tables, stiffness-ladder and
+//! long-horizon plots), and the n/a combinations (`tables`). Colour =
 //! integrator, marker = parameterization, dashed = spatial formulation in every plot
 //! (`style`); log axes carry explicit decade ticks with both end labels (`axes`).
 //!
@@ -25,6 +27,7 @@ pub mod markdown;
 pub mod narrative;
 pub mod scenes;
 pub mod select;
+pub mod stability;
 pub mod style;
 pub mod tables;
 pub mod timeseries;
@@ -79,6 +82,8 @@ pub struct CaseSection {
     pub largest: tables::Table,
     pub gates: Option<tables::Table>,
     pub na: tables::Table,
+    /// The stability study's part (None: no stability.json, or nothing on this case).
+    pub stability: Option<stability::StabilitySection>,
 }
 
 /// The whole report as data (rendered by `html` and `markdown`).
@@ -139,15 +144,36 @@ fn figure(p: &chart::Plot) -> Figure {
     }
 }
 
-/// Builds the page from a summary (no I/O other than reading series files).
+/// Builds the page from a summary (no I/O other than reading series files), with the
+/// stability study's part from `stability` when given (a case found only there gets a section
+/// of its own).
 pub fn build_page(
     summary: &Summary,
     series_root: &Path,
     cases: &[Case],
     gate_rows: Option<&[GateRow]>,
+    stability: Option<stability::Source>,
 ) -> Page {
     let foot = footer(summary);
-    let views = data::case_views(summary, cases);
+    let mut views = data::case_views(summary, cases);
+    if let Some(src) = stability {
+        for name in stability::case_names(src.summary) {
+            if views.iter().any(|v| v.name == name) {
+                continue;
+            }
+            let case = cases.iter().find(|c| c.name == name);
+            views.push(data::CaseView {
+                title: case.map(|c| c.title.clone()).unwrap_or_default(),
+                primary: case
+                    .map(|c| c.primary_metric.clone())
+                    .unwrap_or_else(|| "rotation_error_max".into()),
+                energy_scale: case.map(|c| c.energy_scale),
+                scenes: vec![],
+                case,
+                name,
+            });
+        }
+    }
     let sections = views
         .iter()
         .map(|cv| {
@@ -181,6 +207,8 @@ pub fn build_page(
                 largest: tables::largest_step(cv),
                 gates: tables::gate_table(cv, gate_rows),
                 na: tables::not_applicable(cv),
+                stability: stability
+                    .and_then(|src| stability::section(src, &cv.name, cv.case, &foot)),
             }
         })
         .collect();
@@ -225,15 +253,17 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
 ///
 /// `series_root` is the directory of the series files (`<summary dir>/series`, holding
 /// `<case>/<scene>/<id>.json`; the summary's directory also works). `gate_rows`, when given,
-/// colour the matrices and add a gate table per case.
+/// colour the matrices and add a gate table per case. `stability`, when given, adds the
+/// stability study's part to each case it covers.
 pub fn write_report(
     summary: &Summary,
     series_root: &Path,
     cases: &[Case],
     gate_rows: Option<&[GateRow]>,
+    stability: Option<stability::Source>,
     out: &Path,
 ) -> Result<ReportFiles, ReportError> {
-    let page = build_page(summary, series_root, cases, gate_rows);
+    let page = build_page(summary, series_root, cases, gate_rows, stability);
     let mut svgs = vec![];
     for c in &page.cases {
         let figs = c.across.iter().chain(c.scenes.iter().flat_map(|s| {
@@ -242,6 +272,7 @@ pub fn write_report(
                 .chain(&s.convergence)
                 .chain(&s.timeseries)
         }));
+        let figs = figs.chain(c.stability.iter().flat_map(|st| st.figures()));
         for f in figs {
             let chart::Rendered::Svg(svg) = &f.body else {
                 continue;
@@ -296,7 +327,7 @@ mod tests {
         fixture::write_series(&dir.join("series"), &s, |_| false);
         let cases = crate::case::embedded().unwrap();
         let out = dir.join("report");
-        let files = write_report(&s, &dir.join("series"), &cases, None, &out).unwrap();
+        let files = write_report(&s, &dir.join("series"), &cases, None, None, &out).unwrap();
         let html = std::fs::read_to_string(&files.index_html).unwrap();
         assert_eq!(render_check(&html), Vec::<String>::new());
         for t in html::start_tags(&html) {
@@ -365,7 +396,7 @@ mod tests {
         let dir = fixture::temp_dir("missing");
         let out = dir.join("report");
         // No series at all, and no case files.
-        let files = write_report(&s, &dir.join("nowhere"), &[], None, &out).unwrap();
+        let files = write_report(&s, &dir.join("nowhere"), &[], None, None, &out).unwrap();
         let html = std::fs::read_to_string(&files.index_html).unwrap();
         assert_eq!(render_check(&html), Vec::<String>::new());
         let sec = case_html(&html, fixture::CASE);
@@ -383,7 +414,7 @@ mod tests {
         assert!(sec.contains("written on SO(3) x R^3 (chart so3) only"));
         // Only one scene's series present: that scene's time series are drawn.
         fixture::write_series(&dir.join("series"), &s, |r| r.scene == "large");
-        let files = write_report(&s, &dir.join("series"), &[], None, &out).unwrap();
+        let files = write_report(&s, &dir.join("series"), &[], None, None, &out).unwrap();
         let html = std::fs::read_to_string(&files.index_html).unwrap();
         assert_eq!(
             case_html(&html, fixture::CASE)
@@ -395,7 +426,7 @@ mod tests {
         let mut empty = s.clone();
         empty.records.clear();
         empty.fits.clear();
-        let files = write_report(&empty, &dir.join("series"), &[], None, &out).unwrap();
+        let files = write_report(&empty, &dir.join("series"), &[], None, None, &out).unwrap();
         let html = std::fs::read_to_string(&files.index_html).unwrap();
         assert_eq!(render_check(&html), Vec::<String>::new());
         assert!(html.contains("none (no data)"));
@@ -429,7 +460,7 @@ mod tests {
             gate("two_angles", 5e-3, fixture::PRIMARY, Verdict::Pass),
             gate("two_angles", 2e-2, "energy_drift_max", Verdict::Fail),
         ];
-        let page = build_page(&s, &dir, &[], Some(&rows));
+        let page = build_page(&s, &dir, &[], Some(&rows), None);
         let c = &page.cases[0];
         // Without the case file, scenes sort by name: large, two_angles.
         assert_eq!(c.scenes[1].name, "two_angles");
@@ -468,7 +499,7 @@ mod tests {
         assert!(md.contains("[pass]") && md.contains("[FAIL]"));
         assert!(md.contains("Gates: 1 passed, 1 failed."));
         // Without gate rows nothing is coloured.
-        let plain = build_page(&s, &dir, &[], None);
+        let plain = build_page(&s, &dir, &[], None, None);
         assert!(
             plain.cases[0].scenes[0]
                 .matrix

@@ -31,12 +31,27 @@ pub enum Tone {
 pub struct Cell {
     pub text: String,
     pub tone: Tone,
+    /// The unabridged text when `text` is a shortened form (an HTML `title`, the markdown's
+    /// cell text).
+    pub full: Option<String>,
 }
 
 impl Cell {
     pub fn plain(text: impl Into<String>) -> Cell {
         Cell {
             text: text.into(),
+            tone: Tone::Plain,
+            full: None,
+        }
+    }
+
+    /// A shortened text with its full form (shown on hover in the page, in full in the
+    /// markdown); no full form when they are equal.
+    pub fn abridged(text: impl Into<String>, full: impl Into<String>) -> Cell {
+        let (text, full) = (text.into(), full.into());
+        Cell {
+            full: (full != text).then_some(full),
+            text,
             tone: Tone::Plain,
         }
     }
@@ -290,6 +305,7 @@ pub fn matrix(cv: &CaseView, sv: &SceneView, gates: Option<&[GateRow]>) -> Table
                 row.push(Cell {
                     text,
                     tone: tone(gates, &matched, m),
+                    full: None,
                 });
             }
             let order = v.fit.and_then(|f| f.order).map(|p| format!("{p:.2}"));
@@ -300,14 +316,17 @@ pub fn matrix(cv: &CaseView, sv: &SceneView, gates: Option<&[GateRow]>) -> Table
                 } else {
                     Tone::Plain
                 },
+                full: None,
             });
             row.push(Cell {
                 text: r.stats.rhs_evals.to_string(),
                 tone: tone(gates, &matched, "rhs_evals"),
+                full: None,
             });
             row.push(Cell {
                 text: r.stats.newton_iters.to_string(),
                 tone: tone(gates, &matched, "newton_iters"),
+                full: None,
             });
             row.push(Cell {
                 text: opt(r.wall_s.map(|w| w.min)),
@@ -316,6 +335,7 @@ pub fn matrix(cv: &CaseView, sv: &SceneView, gates: Option<&[GateRow]>) -> Table
                 } else {
                     Tone::Plain
                 },
+                full: None,
             });
             rows.push(row);
         }
@@ -380,6 +400,7 @@ pub fn gate_table(cv: &CaseView, gates: Option<&[GateRow]>) -> Option<Table> {
                         Verdict::Fail => "FAIL".into(),
                     },
                     tone: t,
+                    full: None,
                 },
                 Cell::plain(&g.note),
             ]
