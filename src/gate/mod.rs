@@ -343,9 +343,13 @@ fn expand<'p>(
 }
 
 /// Records of the summary, then of the stability summary, by (case, scene, variant).
+/// A variant's records (case, scene, param, integrator, formulation), each with whether it
+/// comes from the stability summary.
+type VariantRecords<'a> =
+    BTreeMap<(&'a str, &'a str, &'a str, &'a str, &'a str), Vec<(&'a Record, bool)>>;
+
 struct RecordIndex<'a> {
-    /// Records by variant, each with whether it comes from the stability summary.
-    map: BTreeMap<(&'a str, &'a str, &'a str, &'a str, &'a str), Vec<(&'a Record, bool)>>,
+    map: VariantRecords<'a>,
 }
 
 impl<'a> RecordIndex<'a> {
