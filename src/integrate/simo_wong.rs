@@ -138,23 +138,38 @@ impl StepData<'_> {
 
     /// Forward-difference Jacobian of (SW7) at `z` with residual `g0` there.
     fn jacobian(&self, z: &Vector6<f64>, g0: &Vector6<f64>, stats: &mut Stats) -> Matrix6<f64> {
-        let mut jac = Matrix6::identity();
-        let n = if self.translates { 6 } else { 3 };
-        let th_size = z.fixed_rows::<3>(0).amax().max(1e-6);
-        let x_size = z.fixed_rows::<3>(3).amax().max(1e-6);
-        let sq = f64::EPSILON.sqrt();
-        for j in 0..n {
-            let size = if j < 3 { th_size } else { x_size };
-            let dz = sq * z[j].abs().max(size);
-            let mut zp = *z;
-            zp[j] += dz;
-            let dz = zp[j] - z[j];
-            let gp = self.residual(&zp);
-            stats.rhs_evals += 1;
-            jac.set_column(j, &((gp - g0) / dz));
-        }
-        jac
+        forward_jacobian(z, g0, self.translates, |zp| self.residual(zp), stats)
     }
+}
+
+/// Forward-difference Jacobian of a residual of the 6 unknowns (rotational block 0..3,
+/// translational block 3..6; only the first when the body does not translate, the rest of
+/// the matrix being the identity) at `z`, whose residual is `g0`: each column's step is
+/// `sqrt(eps) max(|z_j|, size of its block)`, rounded to a representable difference. Shared
+/// by `simo_wong` and `simo_wong_kahan`; every evaluation counts as one RHS evaluation.
+pub(super) fn forward_jacobian(
+    z: &Vector6<f64>,
+    g0: &Vector6<f64>,
+    translates: bool,
+    residual: impl Fn(&Vector6<f64>) -> Vector6<f64>,
+    stats: &mut Stats,
+) -> Matrix6<f64> {
+    let mut jac = Matrix6::identity();
+    let n = if translates { 6 } else { 3 };
+    let rot_size = z.fixed_rows::<3>(0).amax().max(1e-6);
+    let tr_size = z.fixed_rows::<3>(3).amax().max(1e-6);
+    let sq = f64::EPSILON.sqrt();
+    for j in 0..n {
+        let size = if j < 3 { rot_size } else { tr_size };
+        let dz = sq * z[j].abs().max(size);
+        let mut zp = *z;
+        zp[j] += dz;
+        let dz = zp[j] - z[j];
+        let gp = residual(&zp);
+        stats.rhs_evals += 1;
+        jac.set_column(j, &((gp - g0) / dz));
+    }
+    jac
 }
 
 impl FixedStep<RigidSystem<So3, Body>> for SimoWong {

@@ -25,7 +25,7 @@ use nalgebra::{Matrix6, Vector3, Vector6};
 use super::compensated::{CompensatedRetract, add_compensated, so3_product_compensated};
 use super::newton_stop::{NewtonStop, relative, update_norm};
 use super::own_state::So3State;
-use super::simo_wong::StepData;
+use super::simo_wong::{StepData, forward_jacobian};
 use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats};
 use crate::math::so3;
 use crate::model::rigid_body::RigidSystem;
@@ -84,22 +84,7 @@ fn residual(d: &StepData, z: &Vector6<f64>) -> Vector6<f64> {
 
 /// Forward-difference Jacobian of (K1)-(K2) at `z` with residual `g0` there.
 fn jacobian(d: &StepData, z: &Vector6<f64>, g0: &Vector6<f64>, stats: &mut Stats) -> Matrix6<f64> {
-    let mut jac = Matrix6::identity();
-    let n = if d.translates { 6 } else { 3 };
-    let u_size = z.fixed_rows::<3>(0).amax().max(1e-6);
-    let w_size = z.fixed_rows::<3>(3).amax().max(1e-6);
-    let sq = f64::EPSILON.sqrt();
-    for j in 0..n {
-        let size = if j < 3 { u_size } else { w_size };
-        let dz = sq * z[j].abs().max(size);
-        let mut zp = *z;
-        zp[j] += dz;
-        let dz = zp[j] - z[j];
-        let gp = residual(d, &zp);
-        stats.rhs_evals += 1;
-        jac.set_column(j, &((gp - g0) / dz));
-    }
-    jac
+    forward_jacobian(z, g0, d.translates, |zp| residual(d, zp), stats)
 }
 
 impl FixedStep<RigidSystem<So3, Body>> for SimoWongKahan {
