@@ -188,7 +188,8 @@ pub fn run_study(
     let mut all = step_search(&scenes, &tier_filter, opts, "steps")?;
     let wanted = |case: &str| case_filter.is_empty() || case_filter.iter().any(|c| c == case);
     if wanted(stiffness::CASE) && scene_filter.is_empty() {
-        all.extend(stiffness::study(cases, &tier_filter, opts)?);
+        let done = all.records.clone();
+        all.extend(stiffness::study(cases, &tier_filter, opts, &done)?);
     }
     if scene_filter.is_empty() {
         let kept: Vec<crate::case::Case> =

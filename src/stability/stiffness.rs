@@ -69,8 +69,16 @@ pub fn scenes(c: &Case, quick: bool) -> Result<Vec<(i32, StudyScene, StudyScene)
     Ok(out)
 }
 
-/// Runs the ladder and fits the slopes.
-pub fn study(cases: &[Case], filter: &VariantFilter, opts: &StudyOptions) -> Result<Part, String> {
+/// Runs the ladder and fits the slopes. `done` are step-search records already made on the
+/// case's own scenes: factor 10^0 is the case's own `SCENE`, so its records are reused
+/// (renamed) rather than searched a second time (`run_study` searches that scene with the
+/// same filter whenever it runs the ladder).
+pub fn study(
+    cases: &[Case],
+    filter: &VariantFilter,
+    opts: &StudyOptions,
+    done: &[Record],
+) -> Result<Part, String> {
     let Some(c) = cases.iter().find(|c| c.name == CASE) else {
         return Ok(Part::default());
     };
@@ -80,7 +88,21 @@ pub fn study(cases: &[Case], filter: &VariantFilter, opts: &StudyOptions) -> Res
         .map(|(_, p, f)| (p.clone(), f.clone()))
         .unzip();
     // `filter` is already the tier's (the quick tier: `super::quick_filter`).
-    let mut part = step_search(&periods, filter, opts, "stiffness")?;
+    let own: Vec<&Record> = done
+        .iter()
+        .filter(|r| r.case == CASE && r.scene == SCENE)
+        .collect();
+    let unit = scene_name(0, false);
+    let mut part = if !own.is_empty() && periods.first().is_some_and(|s| s.plan.scene == unit) {
+        let mut p = step_search(&periods[1..], filter, opts, "stiffness")?;
+        p.records.extend(own.into_iter().map(|r| Record {
+            scene: unit.clone(),
+            ..r.clone()
+        }));
+        p
+    } else {
+        step_search(&periods, filter, opts, "stiffness")?
+    };
     // The fixed horizon: euler and rk4 (the quick tier: rk4 only; Euler's stiff points there
     // need more steps than the quick budget).
     let few = if opts.quick {
