@@ -142,6 +142,7 @@ impl Default for Limits {
 
 impl Limits {
     /// `work_limit` failure if a budget is exhausted.
+    #[inline]
     pub fn check(&self, t: f64, stats: &Stats) -> Result<(), Failure> {
         if stats.steps > self.max_steps {
             return Err(Failure::new(

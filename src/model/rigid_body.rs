@@ -109,6 +109,12 @@ impl RigidBody {
         self.free_translation && self.pivot_com.is_none()
     }
 
+    /// Whether any force element acts (springs or gravity); without one the wrench is zero.
+    #[inline(always)]
+    pub fn loaded(&self) -> bool {
+        !self.springs.is_empty() || self.gravity.is_some()
+    }
+
     /// World force on the centre of mass and world torque about the reference point.
     #[inline(always)]
     pub fn wrench(&self, r: &Matrix3<f64>, x: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
@@ -260,8 +266,16 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
         let r = C::rotation(&s.pose);
         let x = C::position(&s.pose);
         let (omega_b, xdot) = self.body_velocities(&r, &x, &s.vel);
-        let (f, tau) = b.wrench(&r, &x);
-        let xddot = if b.translates() {
+        // A body without springs or gravity (free_body) has no wrench: skip it, and the
+        // rotation of the torque into the body frame (in the body formulation of most charts
+        // the rotation matrix is then not needed at all and is not computed).
+        let loaded = b.loaded();
+        let (f, tau) = if loaded {
+            b.wrench(&r, &x)
+        } else {
+            (Vector3::zeros(), Vector3::zeros())
+        };
+        let xddot = if b.translates() && loaded {
             f / b.mass
         } else {
             Vector3::zeros()
@@ -270,7 +284,13 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
             let w = s.vel.fixed_rows::<3>(3).into_owned();
             // J_w^{-1} (tau - w x J_w w) = R J^{-1} (R^T tau - omega x J omega)
             let jo = b.inertia * omega_b;
-            let wdot = r * (b.inertia_inv * (r.transpose() * tau - omega_b.cross(&jo)));
+            let gyro = -omega_b.cross(&jo);
+            let body_torque = if loaded {
+                r.transpose() * tau + gyro
+            } else {
+                gyro
+            };
+            let wdot = r * (b.inertia_inv * body_torque);
             let vsdot = if b.translates() {
                 xddot - wdot.cross(&x) - w.cross(&xdot)
             } else {
@@ -279,7 +299,13 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
             Vector6::new(vsdot.x, vsdot.y, vsdot.z, wdot.x, wdot.y, wdot.z)
         } else {
             let jo = b.inertia * omega_b;
-            let od = b.inertia_inv * (r.transpose() * tau - omega_b.cross(&jo));
+            let gyro = -omega_b.cross(&jo);
+            let od = b.inertia_inv
+                * if loaded {
+                    r.transpose() * tau + gyro
+                } else {
+                    gyro
+                };
             Vector6::new(xddot.x, xddot.y, xddot.z, od.x, od.y, od.z)
         };
         (C::velocity(&s.pose, &r, &omega_b, &xdot, F::SPATIAL), acc)
