@@ -28,29 +28,57 @@ pub trait Observable: System {
     fn energy(&self, o: &Observation) -> f64;
 }
 
-/// A stability bound checked at every observation of an `Observe::Steps` run: the run ends
+/// Stability bounds checked at every observation of an `Observe::Steps` run: the run ends
 /// with `bound_exceeded` as soon as `|E - E0| / max(|E0|, scale) >= max` (or is NaN), so a
 /// probe that has already blown up does not integrate on (an adaptive run at a loose
-/// tolerance can otherwise crawl on tiny steps to its work limit).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// tolerance can otherwise crawl on tiny steps to its work limit); and, when `rotation` is
+/// given, as soon as the geodesic distance to the reference rotation at that observation
+/// reaches its bound (the stability study's accuracy probes: a failing probe stops where it
+/// fails instead of integrating to the horizon). The caller still judges the samples; the
+/// watch only ends hopeless runs early, at the first observation past a bound.
+#[derive(Debug, Clone, PartialEq)]
 pub struct EnergyWatch {
     pub scale: f64,
+    pub max: f64,
+    pub rotation: Option<RotationWatch>,
+}
+
+/// Reference rotations at observation indices `k` (of `Observe::Steps`' `n`), ascending in
+/// `k`, and the bound on the geodesic distance to them (rad). An observation without an entry
+/// is not judged.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RotationWatch {
+    pub reference: std::sync::Arc<[(u64, nalgebra::UnitQuaternion<f64>)]>,
     pub max: f64,
 }
 
 impl EnergyWatch {
-    /// The failure when `s` crosses the bound relative to the initial energy `e0`.
-    fn judge<S: Observable>(&self, sys: &S, e0: f64, s: &Sample) -> Result<(), Failure> {
+    /// The failure when the observation `s` at index `k` crosses a bound (energy relative to
+    /// the initial energy `e0`, then rotation).
+    fn judge<S: Observable>(&self, sys: &S, e0: f64, k: u64, s: &Sample) -> Result<(), Failure> {
+        use crate::integrate::FailureKind::BoundExceeded;
         let d = (sys.energy(&s.obs) - e0).abs() / e0.abs().max(self.scale);
         if d.is_nan() || d >= self.max {
             return Err(Failure::new(
-                crate::integrate::FailureKind::BoundExceeded,
+                BoundExceeded,
                 s.t,
                 format!(
                     "energy error |E - E0| / max(|E0|, energy_scale) = {d:.3e} >= {}",
                     self.max
                 ),
             ));
+        }
+        if let Some(rw) = &self.rotation
+            && let Ok(i) = rw.reference.binary_search_by_key(&k, |(j, _)| *j)
+        {
+            let e = crate::math::so3::geodesic_quat(&s.obs.q, &rw.reference[i].1);
+            if e.is_nan() || e >= rw.max {
+                return Err(Failure::new(
+                    BoundExceeded,
+                    s.t,
+                    format!("rotation error {e:.3e} rad >= {} rad", rw.max),
+                ));
+            }
         }
         Ok(())
     }
@@ -208,7 +236,16 @@ pub fn run_fixed<S: Observable, M: FixedStep<S>>(
             ));
         }
         check_ascending(at)?;
-        return run_fixed_at(sys, method, x0, grid.t_end, n_total, at, *watch, limits);
+        return run_fixed_at(
+            sys,
+            method,
+            x0,
+            grid.t_end,
+            n_total,
+            at,
+            watch.as_ref(),
+            limits,
+        );
     }
     let observe = *observe == Observe::Grid;
     let (dt_out, n_out, stride) = output_grid(grid, Some(h_nominal))?;
@@ -302,7 +339,7 @@ fn run_fixed_at<S: Observable, M: FixedStep<S>>(
     t_end: f64,
     n_total: u64,
     at: &[u64],
-    watch: Option<EnergyWatch>,
+    watch: Option<&EnergyWatch>,
     limits: &Limits,
 ) -> Result<RunOutput, String> {
     let h = t_end / n_total as f64;
@@ -334,7 +371,7 @@ fn run_fixed_at<S: Observable, M: FixedStep<S>>(
             next.next();
             let s = sample(sys, (k + 1) as f64 * h, &x);
             out.samples.push(s);
-            if let Some(Err(f)) = watch.map(|w| w.judge(sys, e0, &s)) {
+            if let Some(Err(f)) = watch.map(|w| w.judge(sys, e0, k + 1, &s)) {
                 out.failure = Some(f);
                 return Ok(out);
             }
@@ -428,7 +465,7 @@ pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
             if *n == 0 {
                 return Err("an observation grid of 0 steps".into());
             }
-            (grid.t_end / *n as f64, *n, 1, Some(&at[..]), *watch)
+            (grid.t_end / *n as f64, *n, 1, Some(&at[..]), watch.as_ref())
         }
     };
     let w = Watched::new(sys.clone());
@@ -470,7 +507,7 @@ pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
             let s = sample(sys, k as f64 * dt_out, y);
             samples.push(s);
             if let Some(w) = watch {
-                w.judge(sys, e0, &s)?;
+                w.judge(sys, e0, k, &s)?;
             }
         }
         Ok(())

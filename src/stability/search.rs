@@ -47,8 +47,17 @@ use crate::summary::{Record, Status};
 pub const SCORE_POINTS: u64 = 200;
 /// The coarsest step tried: `t_h / CAP_STEPS`.
 pub const CAP_STEPS: u64 = 20;
-/// The finest step tried: `t_h / MAX_STEPS` (full tier; about 2e7 steps).
+/// The finest step tried in the stable search: `t_h / MAX_STEPS` (full tier; about 2e7
+/// steps: explicit Euler's stable step over the fixed 10 s horizon of the stiffest ladder scene
+/// needs about 1e7).
 pub const MAX_STEPS: u64 = 20 * (1 << 20);
+/// The finest step tried in the accurate search (full tier; about 2.6e6 steps). Only the
+/// first-order methods get near it: explicit and Lie-Euler stay above the 0.1 rad bound over
+/// 20 periods down to 2e7 steps on `nine_spring/two_angles` (rotation error 0.11 at
+/// n = 20 x 2^20, measured), and the ladder down to that budget cost 8-10 s a variant, 240 of
+/// the scene's 253 core-seconds; at this budget their accurate step is "nothing passed" with
+/// the error at the finest step in the reason.
+pub const MAX_ACCURATE_STEPS: u64 = 20 * (1 << 17);
 /// The same in the quick tier (about 3e5 steps: explicit Euler's accurate step is then
 /// usually "nothing passed").
 pub const QUICK_MAX_STEPS: u64 = 20 * (1 << 14);
@@ -75,6 +84,8 @@ pub struct StudyScene {
     pub spec: StabilitySpec,
     /// The finest step count tried (`MAX_STEPS`, or `QUICK_MAX_STEPS`).
     pub max_steps: u64,
+    /// The same for the accurate search (`MAX_ACCURATE_STEPS`, or `QUICK_MAX_STEPS`).
+    pub max_accurate_steps: u64,
 }
 
 impl StudyScene {
@@ -116,12 +127,18 @@ impl StudyScene {
             period,
             spec: spec.clone(),
             max_steps: MAX_STEPS,
+            max_accurate_steps: MAX_ACCURATE_STEPS,
         }
     }
 
     /// The same with the step budget of a tier.
     pub fn tier(mut self, quick: bool) -> StudyScene {
         self.max_steps = if quick { QUICK_MAX_STEPS } else { MAX_STEPS };
+        self.max_accurate_steps = if quick {
+            QUICK_MAX_STEPS
+        } else {
+            MAX_ACCURATE_STEPS
+        };
         self
     }
 }
@@ -280,15 +297,38 @@ pub fn probe_limits(max_steps: u64) -> crate::integrate::Limits {
 }
 
 /// Runs `v` over the horizon observed at the score times of `n` steps; `value` is the step
-/// (fixed: `t_h / n`) or the tolerance (adaptive).
-fn observe_run(v: &Variant, scene: &StudyScene, n: u64, value: f64) -> Result<RunOutput, String> {
+/// (fixed: `t_h / n`) or the tolerance (adaptive). The run stops at the first observation
+/// past the energy bound, and past the rotation bound when `reference` is given.
+fn observe_run(
+    v: &Variant,
+    scene: &StudyScene,
+    n: u64,
+    value: f64,
+    reference: Option<&OnTheFly>,
+) -> Result<RunOutput, String> {
+    let at = score_indices(n);
+    let rotation = match reference {
+        None => None,
+        Some(r) => {
+            let dt = scene.horizon / n as f64;
+            let mut refs = Vec::with_capacity(at.len() + 1);
+            for &k in at.iter().chain(std::iter::once(&n)) {
+                refs.push((k, r.rotation_at(scene, k as f64 * dt)?));
+            }
+            Some(crate::run::RotationWatch {
+                reference: refs.into(),
+                max: scene.spec.rotation_error_max,
+            })
+        }
+    };
     let mut setup = scene.plan.setup.clone();
     setup.observe = Observe::Steps {
         n,
-        at: score_indices(n),
+        at,
         watch: Some(crate::run::EnergyWatch {
             scale: scene.plan.energy_scale,
             max: ENERGY_BOUND,
+            rotation,
         }),
     };
     setup.limits = probe_limits(scene.max_steps);
@@ -307,7 +347,7 @@ pub fn probe(
         Probe::Steps(n) => (n, scene.horizon / n as f64),
         Probe::Tol(tol) => (SCORE_POINTS, tol),
     };
-    let out = match observe_run(v, scene, n, value) {
+    let out = match observe_run(v, scene, n, value, reference) {
         Ok(o) => o,
         Err(message) => return Verdict::Error(message),
     };
@@ -559,7 +599,7 @@ pub fn search(v: &Variant, scene: &StudyScene, reference: &OnTheFly) -> (Found, 
         };
         let accurate = search_steps(
             n0,
-            scene.max_steps,
+            scene.max_accurate_steps,
             |n| probe(v, scene, Probe::Steps(n), Some(reference)),
             h,
         );
