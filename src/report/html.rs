@@ -196,6 +196,20 @@ fn stability_part(st: &StabilitySection) -> String {
             &st.long_horizon,
         ));
     }
+    if !st.singularity.is_empty() {
+        s.push_str(&figures(
+            "stability-singularity",
+            "Singularity ladder: error, work and conditioning against the approach distance",
+            &st.singularity,
+        ));
+    }
+    if !st.sensitivity.is_empty() {
+        s.push_str(&figures(
+            "stability-sensitivity",
+            "Sensitivity: growth of an initial perturbation",
+            &st.sensitivity,
+        ));
+    }
     for t in [&st.long_table, &st.other, &st.other_fits]
         .into_iter()
         .flatten()

@@ -15,7 +15,13 @@
 //! - long horizon (`energy_growth_exponent`): energy and momentum error against t (log-log,
 //!   from `series/long_horizon/<case>/<scene>/<id>.json` under the stability.json folder),
 //!   the exponent in the legend, and a table of exponents and final errors;
-//! - anything else (e.g. `sensitivity_growth_max`, `approach_distance`, `n/a` records, other
+//! - singularity ladder (records with `approach_distance`): per run setting (integrator, step
+//!   or tolerance) the rotation error, the minimum conditioning and, for adaptive settings, the
+//!   RHS evaluations against `d`, log-log, one line per chart, failures in the red band and
+//!   named in the caption; a sentence per setting on where each Euler chart's error peaks;
+//! - sensitivity (`sensitivity_growth_max`): the growth `G(t)` of each scene from its series
+//!   file, the predictable horizon in the legend, and a sentence with each scene's growth;
+//! - everything not drawn (the singularity and sensitivity numbers too, `n/a` records, other
 //!   fits): generic tables of their metrics, so nothing in the file is dropped.
 //!
 //! A missing series file gives "no data" in its plot, named in the caption; nothing here fails.
@@ -56,6 +62,10 @@ pub struct StabilitySection {
     pub ladder: Vec<Figure>,
     pub long_horizon: Vec<Figure>,
     pub long_table: Option<Table>,
+    /// Singularity-ladder plots (error, work, conditioning against the approach distance).
+    pub singularity: Vec<Figure>,
+    /// The growth of an initial perturbation per scene.
+    pub sensitivity: Vec<Figure>,
     /// Records of other kinds.
     pub other: Option<Table>,
     /// Fits of other kinds.
@@ -65,7 +75,11 @@ pub struct StabilitySection {
 impl StabilitySection {
     /// Every plot of the part.
     pub fn figures(&self) -> impl Iterator<Item = &Figure> {
-        self.ladder.iter().chain(&self.long_horizon)
+        self.ladder
+            .iter()
+            .chain(&self.long_horizon)
+            .chain(&self.singularity)
+            .chain(&self.sensitivity)
     }
 
     /// Every table of the part, in page order.
@@ -643,6 +657,284 @@ fn long_table(case: &str, rs: &[&Record]) -> Table {
     }
 }
 
+fn is_singularity(r: &Record) -> bool {
+    r.metrics.contains_key("approach_distance")
+}
+
+fn is_sensitivity(r: &Record) -> bool {
+    r.metrics.contains_key("sensitivity_growth_max")
+}
+
+/// `x` in plain notation: whole above 100, else at most 3 decimals without trailing zeros.
+fn plain(x: f64) -> String {
+    if x.abs() >= 100.0 {
+        return format!("{x:.0}");
+    }
+    let s = format!("{x:.3}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    s.to_string()
+}
+
+/// The quantities of a singularity-ladder record drawn against `d`: name, axis label, value.
+type Quantity = (&'static str, &'static str, fn(&Record) -> Option<f64>);
+
+const SINGULARITY_QUANTITIES: [Quantity; 3] = [
+    ("rotation_error", "max rotation error (rad)", |r| {
+        r.metrics.get("rotation_error_max").copied().flatten()
+    }),
+    ("rhs_evals", "RHS evaluations", |r| {
+        Some(r.stats.rhs_evals as f64)
+    }),
+    ("conditioning", "minimum chart conditioning", |r| {
+        r.metrics.get("conditioning_min").copied().flatten()
+    }),
+];
+
+/// The singularity-ladder records of a case grouped by run setting (integrator, step or
+/// tolerance), fixed steps first.
+fn singularity_groups<'a>(rs: &[&'a Record]) -> Vec<((String, String), Vec<&'a Record>)> {
+    let mut groups: BTreeMap<(bool, String, u64), Vec<&Record>> = BTreeMap::new();
+    for r in rs.iter().copied().filter(|r| is_singularity(r)) {
+        let value = super::data::step_of(r).unwrap_or(f64::NAN);
+        // Coarse steps and loose tolerances first: larger values sort first.
+        groups
+            .entry((r.tol.is_some(), r.integrator.clone(), !value.to_bits()))
+            .or_default()
+            .push(r);
+    }
+    groups
+        .into_values()
+        .map(|mut v| {
+            v.sort_by_key(|r| VariantKey::of(r));
+            let label = (v[0].integrator.clone(), super::data::step_label(v[0]));
+            (label, v)
+        })
+        .collect()
+}
+
+/// The singularity-ladder plots of a case (`gimbal_lock`): per run setting, the rotation
+/// error, the RHS evaluations (adaptive settings only: a fixed step's work does not depend on
+/// `d`) and the chart's minimum conditioning against the approach distance `d`, log-log, one
+/// line per chart; failed runs are marked at their `d`.
+fn singularity_plots(case: &str, rs: &[&Record], footer: &str) -> Vec<Plot> {
+    let mut out = vec![];
+    for ((integrator, setting), group) in singularity_groups(rs) {
+        let adaptive = group[0].tol.is_some();
+        for (name, y_label, value) in SINGULARITY_QUANTITIES {
+            if name == "rhs_evals" && !adaptive {
+                continue;
+            }
+            let mut by_key: BTreeMap<VariantKey, Vec<(f64, f64)>> = BTreeMap::new();
+            let mut fails = vec![];
+            let mut undrawn: BTreeSet<String> = BTreeSet::new();
+            let mut failed: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+            for r in &group {
+                let key = VariantKey::of(r);
+                let Some(d) = r.metrics.get("approach_distance").copied().flatten() else {
+                    continue;
+                };
+                if r.status == Status::Failed {
+                    let what = r.failure.as_ref().map_or("failed".to_string(), |f| {
+                        format!("{} at t = {}", kind_name(f.kind), num(f.t))
+                    });
+                    failed.entry(key.param.clone()).or_default().insert(what);
+                    fails.push(super::chart::FailMark { key, x: d });
+                    continue;
+                }
+                match value(r) {
+                    Some(y) if y > 0.0 && y.is_finite() => {
+                        by_key.entry(key).or_default().push((d, y))
+                    }
+                    Some(_) => {
+                        undrawn.insert(format!("{} (exact zero)", key.label()));
+                    }
+                    None => {
+                        undrawn.insert(format!("{} (null)", key.label()));
+                    }
+                }
+            }
+            let lines: Vec<Line> = by_key
+                .into_iter()
+                .map(|(key, mut points)| {
+                    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    Line {
+                        label: Some(key.param.clone()),
+                        key,
+                        points,
+                        marker_every: 1,
+                    }
+                })
+                .collect();
+            let regime = match group[0].dt {
+                Some(h) => format!(
+                    " One step travels Omega h = {} rad (Omega = 1 rad/s): for d below it a \
+                     fixed step jumps over the singular set instead of resolving it, so the \
+                     Euler charts' error stops growing there (the regime change).",
+                    num(h)
+                ),
+                None => " An adaptive method resolves the spike by shrinking its steps (its \
+                          work grows as d shrinks); at a loose tolerance it can step over the \
+                          spike unnoticed, and its work then stops growing."
+                    .to_string(),
+            };
+            let mut caption = format!(
+                "gimbal_lock's spin passing within d of the xyz and zyx charts' singular set \
+                 (generated scenes ladder_d1e-k, exact reference): the {} of each chart with \
+                 {integrator} at {setting} against d, log-log; failed runs are marked at their \
+                 d.{regime}",
+                y_label.split(" (").next().unwrap_or(y_label)
+            );
+            if !failed.is_empty() {
+                let list: Vec<String> = failed
+                    .into_iter()
+                    .map(|(p, w)| format!("{p} ({})", w.into_iter().collect::<Vec<_>>().join(", ")))
+                    .collect();
+                caption.push_str(&format!(" Failed (red band): {}.", list.join("; ")));
+            }
+            if !undrawn.is_empty() {
+                caption.push_str(&format!(
+                    " Not drawn: {}.",
+                    undrawn.into_iter().collect::<Vec<_>>().join(", ")
+                ));
+            }
+            let id_setting = setting.replace(' ', "_");
+            out.push(Plot {
+                id: format!("stability/singularity_{integrator}_{id_setting}_{name}"),
+                title: format!(
+                    "{case}: {} vs approach distance ({integrator}, {setting})",
+                    y_label.split(" (").next().unwrap_or(y_label)
+                ),
+                x_label: "approach distance d (rad)".into(),
+                y_label: y_label.into(),
+                x: Scale::Log,
+                y: Scale::Log,
+                lines,
+                fails,
+                legend: Legend::PerLine,
+                caption,
+                footer: footer.into(),
+            });
+        }
+    }
+    out
+}
+
+/// Sentences on the singularity ladder, from its records: per fixed-step setting, where each
+/// Euler chart's error peaks and what it is at the smallest `d`.
+fn singularity_facts(rs: &[&Record]) -> Vec<String> {
+    let mut out = vec![];
+    for ((integrator, setting), group) in singularity_groups(rs) {
+        let mut parts = vec![];
+        let mut by_key: BTreeMap<VariantKey, Vec<(f64, f64)>> = BTreeMap::new();
+        for r in &group {
+            let d = r.metrics.get("approach_distance").copied().flatten();
+            let e = r.metrics.get("rotation_error_max").copied().flatten();
+            if let (Some(d), Some(e), Status::Ok) = (d, e, r.status) {
+                by_key.entry(VariantKey::of(r)).or_default().push((d, e));
+            }
+        }
+        for (key, mut pts) in by_key {
+            if !key.is_euler() || pts.len() < 2 {
+                continue;
+            }
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let peak = pts.iter().max_by(|a, b| a.1.total_cmp(&b.1)).copied();
+            let (d_min, e_min) = pts[0];
+            if let Some((d_peak, e_peak)) = peak {
+                parts.push(format!(
+                    "{} peaks at {} (d = {}), {} at d = {}",
+                    key.param,
+                    num(e_peak),
+                    num(d_peak),
+                    num(e_min),
+                    num(d_min)
+                ));
+            }
+        }
+        if !parts.is_empty() {
+            out.push(format!(
+                "Singularity ladder, {integrator} at {setting}, max rotation error: {}.",
+                parts.join("; ")
+            ));
+        }
+    }
+    out
+}
+
+/// The growth series of a sensitivity record: `(t, G(t))`.
+fn load_growth(dir: &Path, r: &Record) -> Option<Vec<(f64, f64)>> {
+    let rel = r.series.as_ref()?;
+    let text = std::fs::read_to_string(dir.join(rel)).ok()?;
+    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    let col = |name: &str| -> Option<Vec<f64>> {
+        v.get(name)?
+            .as_array()?
+            .iter()
+            .map(|x| x.as_f64())
+            .collect()
+    };
+    let (t, g) = (col("t")?, col("growth")?);
+    Some(t.into_iter().zip(g).collect())
+}
+
+/// The sensitivity plot of a case: the growth `G(t)` of a 1e-9 perturbation of each scene's
+/// initial state against t (log y), one line per scene.
+fn sensitivity_plot(case: &str, rs: &[&Record], dir: &Path, footer: &str) -> Option<Plot> {
+    let rs: Vec<&Record> = rs.iter().copied().filter(|r| is_sensitivity(r)).collect();
+    if rs.is_empty() {
+        return None;
+    }
+    let mut lines = vec![];
+    let mut missing = vec![];
+    for r in &rs {
+        let Some(points) = load_growth(dir, r) else {
+            missing.push(r.scene.clone());
+            continue;
+        };
+        let points: Vec<(f64, f64)> = points.into_iter().filter(|p| p.1 > 0.0).collect();
+        let n = points.len();
+        let horizon = r.metrics.get("predictable_horizon").copied().flatten();
+        lines.push(Line {
+            key: VariantKey {
+                param: "so3".into(),
+                integrator: r.scene.clone(),
+                formulation: "body".into(),
+            },
+            points,
+            label: Some(match horizon {
+                Some(h) => format!("{} (predictable to t = {})", r.scene, num(h)),
+                None => r.scene.clone(),
+            }),
+            marker_every: (n / 8).max(1),
+        });
+    }
+    let mut caption = format!(
+        "How far each scene carries a 1e-9 change of its initial state: G(t), the largest \
+         singular value of the finite-difference state-transition matrix (the growth of the \
+         worst initial direction of attitude, position, velocity and rate), against t \
+         (dop853/so3/body at tol {}). Where G passes 1e7 a round-off-sized difference has grown \
+         past 1e-9, so errors below 1e-9 measured beyond that time (the predictable horizon in \
+         the legend) say nothing about a method.",
+        num(crate::stability::sensitivity::TOL)
+    );
+    if !missing.is_empty() {
+        caption.push_str(&format!(" No series file for: {}.", missing.join(", ")));
+    }
+    Some(Plot {
+        id: "stability/sensitivity".into(),
+        title: format!("{case}: growth of a 1e-9 initial perturbation"),
+        x_label: "t (s)".into(),
+        y_label: "growth G(t)".into(),
+        x: Scale::Linear,
+        y: Scale::Log,
+        lines,
+        fails: vec![],
+        legend: Legend::PerLine,
+        caption,
+        footer: footer.into(),
+    })
+}
+
 /// Records of kinds this part does not know: a generic table of their metrics.
 fn other_table(case: &str, rs: &[&Record]) -> Table {
     let metrics: BTreeSet<&str> = rs
@@ -813,7 +1105,9 @@ pub fn section(
                 .to_string(),
         );
         text.push(
-            "In the tables, 'what limits it' is the failure at the next coarser probe (hover              for the full text); '(cap)' with 'bounded up to the cap' means the coarsest step              tried, t_h / 20, passed: a lower bound, no limit was found."
+            "In the tables, 'what limits it' is the failure at the next coarser probe (hover \
+             for the full text); '(cap)' with 'bounded up to the cap' means the coarsest step \
+             tried, t_h / 20, passed: a lower bound, no limit was found."
                 .to_string(),
         );
         if search.iter().any(|r| r.integrator == "euler") {
@@ -836,6 +1130,41 @@ pub fn section(
              walk)."
                 .to_string(),
         );
+    }
+
+    if other.iter().any(|r| is_singularity(r)) {
+        text.push(
+            "Singularity ladder: gimbal_lock's spin passing within d of the Euler charts' \
+             singular set, d = 1e-1 ... 1e-12; error, work and conditioning against d per \
+             chart and setting (plots below, numbers in the table of other records)."
+                .to_string(),
+        );
+        text.extend(singularity_facts(&other));
+    }
+    if other.iter().any(|r| is_sensitivity(r)) {
+        let facts: Vec<String> = other
+            .iter()
+            .filter(|r| is_sensitivity(r))
+            .filter_map(|r| {
+                let g = r.metrics.get("sensitivity_growth_max").copied().flatten()?;
+                let h = r.metrics.get("predictable_horizon").copied().flatten()?;
+                Some(format!(
+                    "{} {}x (predictable to t = {} s)",
+                    r.scene,
+                    plain(g),
+                    plain(h)
+                ))
+            })
+            .collect();
+        text.push(format!(
+            "Sensitivity: the largest growth of a 1e-9 initial perturbation over each scene's \
+             horizon: {}.",
+            if facts.is_empty() {
+                "not computed".to_string()
+            } else {
+                facts.join(", ")
+            }
+        ));
     }
 
     let steps = ordered_scenes(search.iter().map(|r| r.scene.as_str()), case)
@@ -881,6 +1210,14 @@ pub fn section(
         ladder,
         long_horizon: long_figs,
         long_table: (!long_sorted.is_empty()).then(|| long_table(name, &long_sorted)),
+        singularity: singularity_plots(name, &other, footer)
+            .iter()
+            .map(super::figure)
+            .collect(),
+        sensitivity: sensitivity_plot(name, &other, src.dir, footer)
+            .iter()
+            .map(super::figure)
+            .collect(),
         other: (!other.is_empty()).then(|| other_table(name, &other)),
         other_fits: (!other_fits.is_empty()).then(|| other_fits_table(name, &other_fits)),
     })
@@ -1135,6 +1472,123 @@ mod tests {
         assert!(md.contains(EULER_NOTE));
         assert!(md.contains("#### free_body: long horizon"));
         assert!(md.contains("#### nine_spring: other stability records"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// A singularity-ladder record: chart, setting, distance, error, conditioning, RHS count,
+    /// and optionally a failure.
+    fn sing(p: &str, i: &str, step: (Option<f64>, Option<f64>), d: f64, e: f64) -> Record {
+        let mut r = rec(
+            "gimbal_lock",
+            &format!("ladder_d{d:e}"),
+            p,
+            i,
+            &[
+                ("approach_distance", Some(d)),
+                ("rotation_error_max", Some(e)),
+                ("conditioning_min", Some(d.max(1e-3))),
+            ],
+        );
+        (r.dt, r.tol) = step;
+        r.stats.rhs_evals = (1e3 * e.max(1e-9).log10().abs()) as u64;
+        r
+    }
+
+    /// The singularity ladder gives, per setting, error and conditioning plots (and work for
+    /// an adaptive setting), one line per chart sorted by d, a failed chart in the red band and
+    /// named with its failure in the caption, the regime-change step in the caption; its
+    /// sentence names where each Euler chart's error peaks.
+    #[test]
+    fn singularity_plots_per_setting() {
+        let fixed = (Some(1e-2), None);
+        let tol = (None, Some(1e-8));
+        let mut rs = vec![];
+        for (d, e) in [(1e-2, 1e-4), (1e-10, 1e-11), (1e-6, 1e-2)] {
+            rs.push(sing("euler_xyz", "rk4", fixed, d, e));
+            rs.push(sing("so3", "rk4", fixed, d, 1e-15));
+            rs.push(sing("euler_xyz", "dop853", tol, d, e / 10.0));
+            let mut z = sing("euler_zxz", "rk4", fixed, d, 0.0);
+            z.status = Status::Failed;
+            z.metrics.insert("rotation_error_max".into(), None);
+            z.failure = Some(crate::integrate::Failure::new(
+                crate::integrate::FailureKind::SingularChart,
+                0.0,
+                "conditioning 0",
+            ));
+            rs.push(z);
+        }
+        let refs: Vec<&Record> = rs.iter().collect();
+        let plots = singularity_plots("gimbal_lock", &refs, "footer");
+        let ids: Vec<&str> = plots.iter().map(|p| p.id.as_str()).collect();
+        assert_eq!(
+            ids,
+            [
+                "stability/singularity_rk4_dt_1e-2_rotation_error",
+                "stability/singularity_rk4_dt_1e-2_conditioning",
+                "stability/singularity_dop853_tol_1e-8_rotation_error",
+                "stability/singularity_dop853_tol_1e-8_rhs_evals",
+                "stability/singularity_dop853_tol_1e-8_conditioning",
+            ]
+        );
+        let err = &plots[0];
+        let params: Vec<&str> = err.lines.iter().map(|l| l.key.param.as_str()).collect();
+        assert_eq!(params, ["euler_xyz", "so3"]);
+        assert_eq!(
+            err.lines[0].points,
+            vec![(1e-10, 1e-11), (1e-6, 1e-2), (1e-2, 1e-4)]
+        );
+        assert_eq!(err.fails.len(), 3);
+        assert!(err.caption.contains("Omega h = 1e-2"), "{}", err.caption);
+        assert!(
+            err.caption
+                .contains("Failed (red band): euler_zxz (singular_chart at t = 0)"),
+            "{}",
+            err.caption
+        );
+        assert_eq!(plots[3].lines[0].points[0], (1e-10, 9000.0));
+        let facts = singularity_facts(&refs);
+        assert_eq!(
+            facts[0],
+            "Singularity ladder, rk4 at dt 1e-2, max rotation error: euler_xyz peaks at 1e-2 \
+             (d = 1e-6), 1e-11 at d = 1e-10."
+        );
+    }
+
+    /// The sensitivity plot draws each scene's growth series from its file, names the
+    /// predictable horizon in the legend, and names a scene whose file is missing.
+    #[test]
+    fn sensitivity_plot_from_series() {
+        let dir = fixture::temp_dir("sensitivity");
+        let mut a = rec(
+            "nine_spring",
+            "large",
+            "so3",
+            "dop853",
+            &[
+                ("sensitivity_growth_max", Some(945.0)),
+                ("predictable_horizon", Some(10.0)),
+            ],
+        );
+        a.series = Some("series/sensitivity/nine_spring/large.json".into());
+        let p = dir.join(a.series.as_ref().unwrap());
+        std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+        let v = serde_json::json!({"t": [0.0, 5.0, 10.0], "growth": [1.0, 30.0, 597.0]});
+        std::fs::write(&p, v.to_string()).unwrap();
+        let mut b = a.clone();
+        b.scene = "two_angles".into();
+        b.series = Some("series/sensitivity/nine_spring/two_angles.json".into());
+        let plot = sensitivity_plot("nine_spring", &[&a, &b], &dir, "f").unwrap();
+        assert_eq!(plot.lines.len(), 1);
+        assert_eq!(
+            plot.lines[0].points,
+            vec![(0.0, 1.0), (5.0, 30.0), (10.0, 597.0)]
+        );
+        assert_eq!(
+            plot.lines[0].label.as_deref(),
+            Some("large (predictable to t = 10)")
+        );
+        assert!(plot.caption.contains("No series file for: two_angles."));
+        assert!(sensitivity_plot("nine_spring", &[], &dir, "f").is_none());
         let _ = std::fs::remove_dir_all(&dir);
     }
 
