@@ -13,7 +13,8 @@
 //!   the tests (well below the 0.1 rad bounds it judges).
 //!
 //! Search: a geometric ladder `n = CAP_STEPS * 2^j` (the cap `dt = t_h / 20`), up to the first
-//! passing `n` (at most `MAX_STEPS`), then bisection on `n` between the last failing and the
+//! passing `n` (at most `MAX_STEPS` for the stable search, `MAX_ACCURATE_STEPS` for the
+//! accurate one; a probe stops at the first score time past a bound), then bisection on `n` between the last failing and the
 //! first passing count until they differ by less than 5 % (`RESOLUTION`); the result is `t_h`
 //! over the passing count. When the cap itself passes the variant is "bounded up to the cap"
 //! (the A-stable implicit methods, the energy-conserving ones). The search assumes the
