@@ -28,6 +28,17 @@ fn main() {
         if dirty { "-dirty" } else { "" }
     );
     println!("cargo:rustc-env=MBDBENCH_RUSTC={version}");
+    // HEAD names a branch and does not change on a commit; the branch's ref does. The
+    // sources: an edit makes the tree dirty without touching the index.
     println!("cargo:rerun-if-changed=.git/HEAD");
     println!("cargo:rerun-if-changed=.git/index");
+    if let Ok(head) = std::fs::read_to_string(".git/HEAD")
+        && let Some(r) = head.trim().strip_prefix("ref: ")
+        && std::path::Path::new(".git").join(r).exists()
+    {
+        println!("cargo:rerun-if-changed=.git/{r}");
+    }
+    for p in ["src", "cases", "Cargo.toml", "build.rs"] {
+        println!("cargo:rerun-if-changed={p}");
+    }
 }
