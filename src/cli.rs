@@ -427,8 +427,8 @@ fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
 }
 
 /// Writes the report of the summary at `summary_path` into `out` (default: beside it), with
-/// the cells of gated runs coloured by the gates (full tier; rows without a record are left
-/// uncoloured, so a quick summary colours what it has).
+/// the cells of gated runs coloured by the gates (the quick gates for a quick summary, else the
+/// full ones; rows without a record are left out).
 fn cmd_report(
     common: &Common,
     summary_path: &std::path::Path,
@@ -441,8 +441,10 @@ fn cmd_report(
         .map(|p| p.to_path_buf())
         .unwrap_or_else(|| PathBuf::from("."));
     let out = out.map(|p| p.to_path_buf()).unwrap_or_else(|| dir.clone());
-    let opts =
+    let mut opts =
         crate::gate::GateOptions::new(common.references.clone().unwrap_or_else(default_references));
+    // A quick summary is judged by the quick gates (the full ones name points it lacks).
+    opts.quick = crate::gate::is_quick_summary(&cases, &summary);
     // stability.json beside the summary: its part of the report; unusable = a warning.
     let (stability, warning) = crate::report::stability::load_beside(summary_path);
     if let Some(w) = warning {

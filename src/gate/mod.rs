@@ -421,6 +421,36 @@ impl ReferenceHashes<'_> {
     }
 }
 
+/// Whether `summary` is a quick-tier run: it has ladder records and every one of them lies on
+/// its scene's quick ladder (a full run also has the points off it). The report evaluates the
+/// quick gates for such a summary: the full gates would ask for points it does not have.
+pub fn is_quick_summary(cases: &[Case], summary: &Summary) -> bool {
+    let Ok(plans) = plan::plans(cases, &[], &[]) else {
+        return false;
+    };
+    let mut any = false;
+    for r in &summary.records {
+        let Some(value) = r.dt.or(r.tol) else {
+            continue;
+        };
+        let Some(p) = plans
+            .iter()
+            .find(|p| p.case == r.case && p.scene == r.scene)
+        else {
+            return false;
+        };
+        let q = &p.quick;
+        let on_quick = [&q.order1, &q.order2_4, &q.order6, &q.tol]
+            .iter()
+            .any(|l| l.contains(&value));
+        if !on_quick {
+            return false;
+        }
+        any = true;
+    }
+    any
+}
+
 /// Evaluates the gates of `cases` (only `quick = true` ones with `opts.quick`) against the
 /// records of `summary` and `stability`, then, with `opts.baseline`, compares `summary` with
 /// the baseline. Rows come in case, gate, scene, registry and ladder order, baseline rows
@@ -617,6 +647,36 @@ mod tests {
             .iter_mut()
             .find(|r| r.integrator == integrator && r.dt == Some(dt))
             .unwrap()
+    }
+
+    /// A summary whose ladder records all lie on their scenes' quick ladders is quick; one
+    /// record off them (a full-ladder point) or no ladder record at all makes it not quick.
+    #[test]
+    fn quick_summary_is_recognised() {
+        let cases = case::embedded().unwrap();
+        let plans = plan::plans(&cases, &[], &[]).unwrap();
+        let p = plans
+            .iter()
+            .find(|p| p.case == "nine_spring" && p.scene == "two_angles")
+            .unwrap();
+        let mut s = passing(&nine());
+        s.records.truncate(1);
+        let r = &mut s.records[0];
+        (r.case, r.scene, r.tol) = ("nine_spring".into(), "two_angles".into(), None);
+        r.dt = Some(p.quick.order2_4[0]);
+        assert!(is_quick_summary(&cases, &s));
+        let off = *p
+            .ladders
+            .order2_4
+            .iter()
+            .find(|h| !p.quick.order2_4.contains(h))
+            .expect("a full-only point");
+        let mut full = s.records[0].clone();
+        full.dt = Some(off);
+        s.records.push(full);
+        assert!(!is_quick_summary(&cases, &s));
+        s.records.clear();
+        assert!(!is_quick_summary(&cases, &s));
     }
 
     /// A summary within every bound passes: one row per expanded point (1 + 1 + 2), exit 0.
