@@ -34,10 +34,11 @@ pub trait Observable: System {
 /// tolerance can otherwise crawl on tiny steps to its work limit); and, when `rotation` is
 /// given, as soon as the geodesic distance to the reference rotation at that observation
 /// reaches its bound (the stability study's accuracy probes: a failing probe stops where it
-/// fails instead of integrating to the horizon). The caller still judges the samples; the
-/// watch only ends hopeless runs early, at the first observation past a bound.
+/// fails instead of integrating to the horizon). Every observation after the first is
+/// judged, so a run that ends without a failure stayed within the bounds throughout: the
+/// stability search's probes need no second pass over the samples.
 #[derive(Debug, Clone, PartialEq)]
-pub struct EnergyWatch {
+pub struct BoundWatch {
     pub scale: f64,
     pub max: f64,
     pub rotation: Option<RotationWatch>,
@@ -52,7 +53,7 @@ pub struct RotationWatch {
     pub max: f64,
 }
 
-impl EnergyWatch {
+impl BoundWatch {
     /// The failure when the observation `s` at index `k` crosses a bound (energy relative to
     /// the initial energy `e0`, then rotation).
     fn judge<S: Observable>(&self, sys: &S, e0: f64, k: u64, s: &Sample) -> Result<(), Failure> {
@@ -100,7 +101,7 @@ pub enum Observe {
         n: u64,
         at: std::sync::Arc<[u64]>,
         /// End the run when the energy bound is crossed at an observation.
-        watch: Option<EnergyWatch>,
+        watch: Option<BoundWatch>,
     },
 }
 
@@ -339,7 +340,7 @@ fn run_fixed_at<S: Observable, M: FixedStep<S>>(
     t_end: f64,
     n_total: u64,
     at: &[u64],
-    watch: Option<&EnergyWatch>,
+    watch: Option<&BoundWatch>,
     limits: &Limits,
 ) -> Result<RunOutput, String> {
     let h = t_end / n_total as f64;

@@ -983,26 +983,14 @@ proptest! {
 
 /// Files under `dir` that look like leftovers of an interrupted atomic write.
 fn temp_files(dir: &Path) -> Vec<PathBuf> {
-    let mut out = vec![];
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        let Ok(rd) = std::fs::read_dir(&d) else {
-            continue;
-        };
-        for e in rd.flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p
-                .extension()
+    all_files(dir)
+        .into_iter()
+        .filter(|p| {
+            p.extension()
                 .and_then(|x| x.to_str())
                 .is_some_and(|x| x.starts_with("tmp"))
-            {
-                out.push(p);
-            }
-        }
-    }
-    out
+        })
+        .collect()
 }
 
 /// Every file under `dir`.

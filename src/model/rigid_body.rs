@@ -275,21 +275,21 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
         } else {
             (Vector3::zeros(), Vector3::zeros())
         };
-        let xddot = if b.translates() && loaded {
+        let xddot = if b.translates() {
             f / b.mass
         } else {
             Vector3::zeros()
         };
+        // R^T tau - omega x J omega, the body-frame torque both formulations integrate.
+        let gyro = -omega_b.cross(&(b.inertia * omega_b));
+        let body_torque = if loaded {
+            r.transpose() * tau + gyro
+        } else {
+            gyro
+        };
         let acc = if F::SPATIAL {
             let w = s.vel.fixed_rows::<3>(3).into_owned();
             // J_w^{-1} (tau - w x J_w w) = R J^{-1} (R^T tau - omega x J omega)
-            let jo = b.inertia * omega_b;
-            let gyro = -omega_b.cross(&jo);
-            let body_torque = if loaded {
-                r.transpose() * tau + gyro
-            } else {
-                gyro
-            };
             let wdot = r * (b.inertia_inv * body_torque);
             let vsdot = if b.translates() {
                 xddot - wdot.cross(&x) - w.cross(&xdot)
@@ -298,14 +298,7 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
             };
             Vector6::new(vsdot.x, vsdot.y, vsdot.z, wdot.x, wdot.y, wdot.z)
         } else {
-            let jo = b.inertia * omega_b;
-            let gyro = -omega_b.cross(&jo);
-            let od = b.inertia_inv
-                * if loaded {
-                    r.transpose() * tau + gyro
-                } else {
-                    gyro
-                };
+            let od = b.inertia_inv * body_torque;
             Vector6::new(xddot.x, xddot.y, xddot.z, od.x, od.y, od.z)
         };
         (C::velocity(&s.pose, &r, &omega_b, &xdot, F::SPATIAL), acc)

@@ -500,14 +500,20 @@ fn load_long_series(dir: &Path, r: &Record) -> Option<LongSeries> {
         let text = std::fs::read_to_string(p).ok()?;
         serde_json::from_str(&text).ok()
     })?;
-    let col = |name: &str| -> Option<Vec<f64>> {
-        v.get(name)?
-            .as_array()?
-            .iter()
-            .map(|x| x.as_f64().or(Some(f64::NAN)))
-            .collect()
-    };
-    Some((col("t")?, col("energy_error")?, col("momentum_error")))
+    Some((
+        column(&v, "t")?,
+        column(&v, "energy_error")?,
+        column(&v, "momentum_error"),
+    ))
+}
+
+/// Column `name` of a series file's JSON (a non-number, e.g. `null`, reads as NaN).
+fn column(v: &serde_json::Value, name: &str) -> Option<Vec<f64>> {
+    v.get(name)?
+        .as_array()?
+        .iter()
+        .map(|x| x.as_f64().or(Some(f64::NAN)))
+        .collect()
 }
 
 /// The long-horizon plots of one scene (energy, and momentum when any record has it).
@@ -866,14 +872,7 @@ fn load_growth(dir: &Path, r: &Record) -> Option<Vec<(f64, f64)>> {
     let rel = r.series.as_ref()?;
     let text = std::fs::read_to_string(dir.join(rel)).ok()?;
     let v: serde_json::Value = serde_json::from_str(&text).ok()?;
-    let col = |name: &str| -> Option<Vec<f64>> {
-        v.get(name)?
-            .as_array()?
-            .iter()
-            .map(|x| x.as_f64())
-            .collect()
-    };
-    let (t, g) = (col("t")?, col("growth")?);
+    let (t, g) = (column(&v, "t")?, column(&v, "growth")?);
     Some(t.into_iter().zip(g).collect())
 }
 

@@ -37,7 +37,6 @@ use std::sync::Arc;
 
 use crate::case::{Case, StabilitySpec};
 use crate::integrate::{Failure, FailureKind};
-use crate::math::so3;
 use crate::model::linear_modes;
 use crate::registry::{self, Variant};
 use crate::run::{Observe, RunOutput, Sample};
@@ -326,7 +325,7 @@ fn observe_run(
     setup.observe = Observe::Steps {
         n,
         at,
-        watch: Some(crate::run::EnergyWatch {
+        watch: Some(crate::run::BoundWatch {
             scale: scene.plan.energy_scale,
             max: ENERGY_BOUND,
             rotation,
@@ -337,7 +336,8 @@ fn observe_run(
 }
 
 /// The probe of `v` with `n` steps (fixed) or at tolerance `tol` (adaptive, observed at
-/// `SCORE_POINTS` uniform times), judged stable, and accurate when `reference` is given.
+/// `SCORE_POINTS` uniform times), judged stable, and accurate when `reference` is given: a
+/// typed failure, or a bound crossed at an observation (`run::BoundWatch`), fails it.
 pub fn probe(
     v: &Variant,
     scene: &StudyScene,
@@ -352,43 +352,12 @@ pub fn probe(
         Ok(o) => o,
         Err(message) => return Verdict::Error(message),
     };
-    if let Some(f) = &out.failure {
-        return Verdict::Fail(Limit::from_failure(f));
+    // The run's watch judged every observation after the first (energy, and rotation against
+    // the reference when given) and ended the run at the first one past a bound.
+    match &out.failure {
+        Some(f) => Verdict::Fail(Limit::from_failure(f)),
+        None => Verdict::Pass,
     }
-    let body = &scene.plan.setup.body;
-    let e0 = body.energy(&out.samples[0].obs);
-    let scale = e0.abs().max(scene.plan.energy_scale);
-    for s in &out.samples {
-        let d = (body.energy(&s.obs) - e0).abs() / scale;
-        if d.is_nan() || d >= ENERGY_BOUND {
-            return Verdict::Fail(Limit {
-                kind: FailureKind::BoundExceeded,
-                t: s.t,
-                message: format!(
-                    "energy error |E - E0| / max(|E0|, energy_scale) = {d:.3e} >= {ENERGY_BOUND}"
-                ),
-            });
-        }
-    }
-    let Some(reference) = reference else {
-        return Verdict::Pass;
-    };
-    let bound = scene.spec.rotation_error_max;
-    for s in &out.samples {
-        let r = match reference.rotation_at(scene, s.t) {
-            Ok(r) => r,
-            Err(e) => return Verdict::Error(e),
-        };
-        let e = so3::geodesic_quat(&s.obs.q, &r);
-        if e.is_nan() || e >= bound {
-            return Verdict::Fail(Limit {
-                kind: FailureKind::BoundExceeded,
-                t: s.t,
-                message: format!("rotation error {e:.3e} rad >= {bound} rad"),
-            });
-        }
-    }
-    Verdict::Pass
 }
 
 /// A probe point: a step count or a tolerance.
@@ -664,6 +633,7 @@ pub fn record(v: &Variant, scene: &StudyScene, stable: &Found, accurate: &Found)
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::so3;
 
     fn fail(n: f64) -> Verdict {
         Verdict::Fail(Limit {
