@@ -25,9 +25,11 @@
 //! Invariants: the state moves only by `retract` (stays on the group up to rounding);
 //! stage workspace is a fixed array (no allocation per step). Failure: a non-finite stage
 //! value is a `non_finite` failure, the state is left unchanged.
+use super::explicit_rk::FixedTableau;
 use super::tableau::{MAX_STAGES, Tableau};
 use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats, System};
 use crate::math::vector::Vector;
+use std::marker::PhantomData;
 
 /// Lie-Euler: `x (+) h f(t, x)`.
 pub const LIE_EULER: Tableau = Tableau {
@@ -47,31 +49,53 @@ pub const CG3: Tableau = Tableau {
     b: &[13.0 / 51.0, -2.0 / 3.0, 24.0 / 17.0],
 };
 
-/// A Crouch-Grossman method.
-#[derive(Debug, Clone)]
-pub struct CrouchGrossman<S: System> {
-    tab: &'static Tableau,
-    k: [S::Tangent; MAX_STAGES],
+/// Lie-Euler's tableau as a type.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct LieEulerTableau;
+impl FixedTableau for LieEulerTableau {
+    const TAB: &'static Tableau = &LIE_EULER;
 }
 
-impl<S: System> CrouchGrossman<S> {
-    /// The method of tableau `tab` (coefficients satisfying the CG order conditions).
-    pub fn new(tab: &'static Tableau) -> Self {
-        assert!(tab.stages() <= MAX_STAGES, "tableau {} too large", tab.name);
-        CrouchGrossman {
-            tab,
-            k: [S::Tangent::zero(); MAX_STAGES],
-        }
-    }
+/// CG3's tableau as a type.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Cg3Tableau;
+impl FixedTableau for Cg3Tableau {
+    const TAB: &'static Tableau = &CG3;
+}
 
+/// The Crouch-Grossman method of tableau `T` (coefficients satisfying the CG order
+/// conditions), known at compile time like `ExplicitRk`'s: the stage loop is unrolled. It
+/// holds no state; the stages live on the stack of one step.
+#[derive(Debug, Clone, Copy)]
+pub struct CrouchGrossman<S: System, T: FixedTableau> {
+    _m: PhantomData<(S, T)>,
+}
+
+impl<S: System, T: FixedTableau> CrouchGrossman<S, T> {
+    /// The method of tableau `T` (at most `MAX_STAGES` stages, checked at compile time).
+    pub const fn new() -> Self {
+        const { assert!(T::TAB.stages() <= MAX_STAGES, "tableau too large") };
+        CrouchGrossman { _m: PhantomData }
+    }
+}
+
+impl<S: System, T: FixedTableau> Default for CrouchGrossman<S, T> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<S: System> CrouchGrossman<S, LieEulerTableau> {
     /// Lie-Euler, order 1.
-    pub fn lie_euler() -> Self {
-        Self::new(&LIE_EULER)
+    pub const fn lie_euler() -> Self {
+        Self::new()
     }
+}
 
+impl<S: System> CrouchGrossman<S, Cg3Tableau> {
     /// CG3, order 3.
-    pub fn cg3() -> Self {
-        Self::new(&CG3)
+    pub const fn cg3() -> Self {
+        Self::new()
     }
 }
 
@@ -87,12 +111,12 @@ fn compose<S: System>(sys: &S, x: &S::State, h: f64, w: &[f64], k: &[S::Tangent]
     y
 }
 
-impl<S: System> FixedStep<S> for CrouchGrossman<S> {
+impl<S: System, T: FixedTableau> FixedStep<S> for CrouchGrossman<S, T> {
     fn info(&self) -> MethodInfo {
         MethodInfo {
-            name: self.tab.name,
-            order: self.tab.order,
-            stages: self.tab.stages() as u32,
+            name: T::TAB.name,
+            order: T::TAB.order,
+            stages: T::TAB.stages() as u32,
             implicit: false,
             symplectic: false,
             lie_group: S::LIE,
@@ -102,6 +126,7 @@ impl<S: System> FixedStep<S> for CrouchGrossman<S> {
     }
 
     /// One step; counts its `stages` RHS evaluations (the caller counts the step).
+    #[inline]
     fn step(
         &mut self,
         sys: &S,
@@ -110,22 +135,24 @@ impl<S: System> FixedStep<S> for CrouchGrossman<S> {
         x: &mut S::State,
         stats: &mut Stats,
     ) -> Result<(), Failure> {
-        let s = self.tab.stages();
+        let tab = T::TAB;
+        let s = tab.stages();
+        let mut k = [S::Tangent::zero(); MAX_STAGES];
         let mut finite = true;
         for i in 0..s {
-            let y = compose(sys, x, h, self.tab.a[i], &self.k[..i]);
-            self.k[i] = sys.rhs(t + self.tab.c[i] * h, &y);
+            let y = compose(sys, x, h, tab.a[i], &k[..i]);
+            k[i] = sys.rhs(t + tab.c[i] * h, &y);
             stats.rhs_evals += 1;
-            finite &= self.k[i].is_finite();
+            finite &= k[i].is_finite();
         }
         if !finite {
             return Err(Failure::new(
                 FailureKind::NonFinite,
                 t,
-                format!("{}: non-finite stage value", self.tab.name),
+                format!("{}: non-finite stage value", tab.name),
             ));
         }
-        *x = compose(sys, x, h, self.tab.b, &self.k[..s]);
+        *x = compose(sys, x, h, tab.b, &k[..s]);
         Ok(())
     }
 }
@@ -186,6 +213,10 @@ mod tests {
         a: &[&[], &[0.5], &[-1.0, 2.0]],
         b: &[1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0],
     };
+    struct Kutta3Tableau;
+    impl FixedTableau for Kutta3Tableau {
+        const TAB: &'static Tableau = &KUTTA3;
+    }
 
     /// CG3 satisfies the classical conditions up to order 3 (row sums included) and the
     /// non-commutative one, to rounding (all coefficients O(1), so 1e-15).
@@ -220,28 +251,33 @@ mod tests {
     #[test]
     fn rotor_orders() {
         let sys = rotor_system();
-        let t_end = 2.0;
-        let reference = rotor_reference(&sys, t_end);
-        let errs = |tab: &'static Tableau, ns: &[usize]| -> Vec<f64> {
+        let reference = rotor_reference(&sys, 2.0);
+        fn errs<T: FixedTableau>(sys: &RotorSys, reference: &RotorState, ns: &[usize]) -> Vec<f64> {
             ns.iter()
                 .map(|&n| {
-                    let x = run(
-                        &mut CrouchGrossman::new(tab),
-                        &sys,
-                        rotor_initial(&sys),
-                        t_end,
-                        n,
-                    );
-                    rotor_distance(&x, &reference)
+                    let mut m = CrouchGrossman::<RotorSys, T>::new();
+                    let x = run(&mut m, sys, rotor_initial(sys), 2.0, n);
+                    rotor_distance(&x, reference)
                 })
                 .collect()
-        };
-        for (tab, ns, p) in [
-            (&LIE_EULER, vec![1000, 2000, 4000], 1.0),
-            (&CG3, vec![50, 100, 200, 400], 3.0),
-            (&KUTTA3, vec![50, 100, 200, 400], 2.0),
+        }
+        for (e, tab, p) in [
+            (
+                errs::<LieEulerTableau>(&sys, &reference, &[1000, 2000, 4000]),
+                &LIE_EULER,
+                1.0,
+            ),
+            (
+                errs::<Cg3Tableau>(&sys, &reference, &[50, 100, 200, 400]),
+                &CG3,
+                3.0,
+            ),
+            (
+                errs::<Kutta3Tableau>(&sys, &reference, &[50, 100, 200, 400]),
+                &KUTTA3,
+                2.0,
+            ),
         ] {
-            let e = errs(tab, &ns);
             let q = observed_orders(&e);
             let e_s = sci(&e);
             let q_s = fixed(&q);

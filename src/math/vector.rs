@@ -17,6 +17,7 @@ pub trait Vector: Copy + Debug + Send + Sync + 'static {
     /// `self += a * x`.
     fn axpy(&mut self, a: f64, x: &Self);
     /// `a * self`.
+    #[inline(always)]
     fn scaled(&self, a: f64) -> Self {
         let mut out = Self::zero();
         out.axpy(a, self);
@@ -31,6 +32,7 @@ pub trait Vector: Copy + Debug + Send + Sync + 'static {
     /// Whether every component is finite.
     fn is_finite(&self) -> bool;
     /// `self - x`.
+    #[inline(always)]
     fn minus(&self, x: &Self) -> Self {
         let mut out = *self;
         out.axpy(-1.0, x);

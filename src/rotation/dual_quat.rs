@@ -110,6 +110,7 @@ impl PoseChart for DualQuat {
     fn normalize(_c: &mut Self::Coords) -> bool {
         false
     }
+    #[inline]
     fn is_finite(c: &Self::Coords) -> bool {
         c.real
             .coords

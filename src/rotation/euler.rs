@@ -217,6 +217,7 @@ macro_rules! euler_chart {
             fn normalize(_c: &mut Self::Coords) -> bool {
                 false
             }
+            #[inline]
             fn is_finite(c: &Self::Coords) -> bool {
                 c.rot.iter().chain(c.x.iter()).all(|v| v.is_finite())
             }

@@ -133,6 +133,7 @@ macro_rules! matrix_chart {
                     None => false,
                 }
             }
+            #[inline]
             fn is_finite(c: &Self::Coords) -> bool {
                 c.rot.iter().chain(c.x.iter()).all(|v| v.is_finite())
             }

@@ -129,6 +129,7 @@ macro_rules! quat_chart {
                 }
                 $proj
             }
+            #[inline]
             fn is_finite(c: &Self::Coords) -> bool {
                 c.rot.coords.iter().chain(c.x.iter()).all(|v| v.is_finite())
             }

@@ -88,6 +88,7 @@ impl PoseChart for RotVec {
             false
         }
     }
+    #[inline]
     fn is_finite(c: &Self::Coords) -> bool {
         c.rot.iter().chain(c.x.iter()).all(|v| v.is_finite())
     }

@@ -101,6 +101,7 @@ impl PoseChart for Se3Hq {
         c.rot = UnitQuaternion::new_normalize(c.rot.into_inner());
         true
     }
+    #[inline]
     fn is_finite(c: &Self::Coords) -> bool {
         c.rot.coords.iter().chain(c.x.iter()).all(|v| v.is_finite())
     }

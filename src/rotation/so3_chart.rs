@@ -92,6 +92,7 @@ impl PoseChart for So3 {
         c.rot = UnitQuaternion::new_normalize(c.rot.into_inner());
         true
     }
+    #[inline]
     fn is_finite(c: &Self::Coords) -> bool {
         c.rot.coords.iter().all(|v| v.is_finite()) && c.x.iter().all(|v| v.is_finite())
     }
