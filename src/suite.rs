@@ -292,6 +292,20 @@ pub fn run_catalogue(
             }
         }
     }
+    // Longest first (by step count, `t_end / dt`; adaptive runs last), one job per rayon
+    // task (`with_max_len(1)`): the parallel pass then ends on short runs. Without it rayon
+    // hands each thread a contiguous block it cannot split once started, and one core ground
+    // through the long Euler runs alone (full ladder: 60.6 s wall on 2 cores for 70.7 s of
+    // work). Records are sorted below, so the order does not show in the summary.
+    let t_end = |j: &Job| opts.t_end.unwrap_or(plans[j.plan].setup.grid.t_end);
+    let steps = |j: &Job| {
+        if j.variant.info.adaptive {
+            0.0
+        } else {
+            t_end(j) / j.value
+        }
+    };
+    jobs.sort_by(|a, b| steps(b).total_cmp(&steps(a)));
     let total = jobs.len();
     let progress = Progress::new(total, "results", opts.progress);
     let pool = rayon::ThreadPoolBuilder::new()
@@ -310,6 +324,7 @@ pub fn run_catalogue(
         .collect();
     let done: Vec<Done> = pool.install(|| {
         jobs.par_iter()
+            .with_max_len(1)
             .map(|job| {
                 let plan = &plans_t[job.plan];
                 let d = run_job(plan, job, refs[job.plan].as_ref());

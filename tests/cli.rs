@@ -175,8 +175,12 @@ fn missing_and_stale_references_exit_2() {
 fn diverging_and_over_budget_runs_are_typed_failures() {
     let dir = cases_with("diverge", "nine_spring.toml", |t| {
         // The case-wide order-1 ladder and the `large` scene's own override.
-        let t = replace_once(t, "order1 = [2.0e-5, 1.0e-5, 5.0e-6]", "order1 = [1.0e-1]");
-        replace_once(&t, "ladders = { order1 = [2.0e-5, 1.0e-5] }", "")
+        let t = replace_once(
+            t,
+            "order1 = [2.0e-5, 1.25e-5, 7.8125e-6]",
+            "order1 = [1.0e-1]",
+        );
+        replace_once(&t, "ladders = { order1 = [4.0e-5, 2.0e-5] }", "")
     });
     let out = dir.join("out");
     let o = run(&[

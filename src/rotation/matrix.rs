@@ -27,32 +27,41 @@ pub fn orthogonality_defect(x: &Matrix3<f64>) -> f64 {
     (x.transpose() * x - Matrix3::identity()).norm()
 }
 
+/// `X^T X - I` and its Frobenius norm, the defect.
+#[inline(always)]
+fn gram_defect(x: &Matrix3<f64>) -> (Matrix3<f64>, f64) {
+    let m = x.transpose() * x - Matrix3::identity();
+    let d = m.norm();
+    (m, d)
+}
+
 /// The orthogonal polar factor of `x` (module docs); `None` if `x` is singular or
-/// non-finite, or the iteration does not converge in 60 steps.
+/// non-finite, or the iteration does not converge in 60 steps. The Newton-Schulz step reuses
+/// the Gram matrix of the defect test (`I - X^T X = -(X^T X - I)` exactly in floating point).
 pub fn polar_rotation(x: &Matrix3<f64>) -> Option<Matrix3<f64>> {
     let mut y = *x;
-    let mut d = orthogonality_defect(&y);
+    let (mut m, mut d) = gram_defect(&y);
     for _ in 0..60 {
         if !d.is_finite() {
             return None;
         }
         if d > 1e-2 {
             y = (y + y.try_inverse()?.transpose()) * 0.5;
-            d = orthogonality_defect(&y);
+            (m, d) = gram_defect(&y);
             continue;
         }
         if d <= 1e-15 {
             return Some(y);
         }
-        let e = Matrix3::identity() - y.transpose() * y;
+        let e = -m;
         let next = y + y * e * 0.5;
-        let dn = orthogonality_defect(&next);
+        let (mn, dn) = gram_defect(&next);
         if dn >= d {
             // Round-off floor reached: the last step changed y at ulp level only.
             return Some(next);
         }
         y = next;
-        d = dn;
+        (m, d) = (mn, dn);
     }
     None
 }

@@ -439,6 +439,7 @@ pub fn study(cases: &[Case], filter: &VariantFilter, opts: &StudyOptions) -> Res
     let mut done: Vec<(usize, Done)> = pool.install(|| {
         order
             .par_iter()
+            .with_max_len(1)
             .map(|&i| {
                 let d = run_job(&jobs[i]);
                 if opts.progress {

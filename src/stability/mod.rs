@@ -149,6 +149,7 @@ pub fn step_search(
     let done = std::sync::atomic::AtomicUsize::new(0);
     let records: Vec<Record> = pool.install(|| {
         jobs.par_iter()
+            .with_max_len(1)
             .map(|j| {
                 let s = &scenes[j.scene];
                 let t0 = std::time::Instant::now();

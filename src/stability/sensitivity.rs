@@ -154,6 +154,7 @@ pub fn study(cases: &[Case], plans: &[ScenePlan], opts: &StudyOptions) -> Result
     let done: Vec<(Record, Option<(String, serde_json::Value)>)> = pool.install(|| {
         chosen
             .par_iter()
+            .with_max_len(1)
             .map(|p| {
                 let g = growth(p);
                 record(p, g)

@@ -109,6 +109,7 @@ pub fn study(
         .map_err(|e| e.to_string())?;
     let records: Vec<Record> = pool.install(|| {
         jobs.par_iter()
+            .with_max_len(1)
             .map(|&(i, v, x)| {
                 let (d, w, plan) = &plans[i];
                 run_one(v, plan, *d, w, x)
