@@ -68,7 +68,7 @@
 //! and `info()` says so.
 use std::marker::PhantomData;
 
-use super::linalg::{DenseLu, lu_factor, lu_solve};
+use super::linalg::DenseLu;
 use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats, System};
 use crate::math::vector::Vector;
 
@@ -181,16 +181,15 @@ impl Tableau {
         // d solves A^T d = b (A of a Gauss method is invertible: its eigenvalues are the
         // reciprocals of the poles of the Pade stability function, all in Re > 0).
         let s = t.s;
-        let mut at = [0.0; MAX_STAGES * MAX_STAGES];
+        let mut lu = DenseLu::new(s);
+        let at = lu.matrix_mut();
         for i in 0..s {
             for j in 0..s {
                 at[i * s + j] = t.a[j][i];
             }
         }
-        let mut piv = [0; MAX_STAGES];
         t.d[..s].copy_from_slice(&t.b[..s]);
-        let ok = lu_factor(&mut at[..s * s], s, &mut piv)
-            .and_then(|_| lu_solve(&at[..s * s], s, &piv, &mut t.d[..s]));
+        let ok = lu.factor().and_then(|_| lu.solve(&mut t.d[..s]));
         debug_assert!(ok.is_ok(), "Gauss tableau A is invertible");
         t
     }
