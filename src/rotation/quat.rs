@@ -125,7 +125,7 @@ macro_rules! quat_chart {
             #[inline(always)]
             fn normalize(c: &mut Self::Coords) -> bool {
                 if $proj {
-                    c.rot /= c.rot.norm();
+                    c.rot = so3::renormalize(c.rot);
                 }
                 $proj
             }

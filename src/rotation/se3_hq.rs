@@ -98,7 +98,7 @@ impl PoseChart for Se3Hq {
     }
     #[inline(always)]
     fn normalize(c: &mut Self::Coords) -> bool {
-        c.rot = UnitQuaternion::new_normalize(c.rot.into_inner());
+        c.rot = UnitQuaternion::new_unchecked(so3::renormalize(c.rot.into_inner()));
         true
     }
     #[inline]
