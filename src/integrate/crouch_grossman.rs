@@ -22,9 +22,9 @@
 //! order 3; Crouch & Grossman 1993: `c = (0, 3/4, 17/24)`, `a21 = 3/4`, `a31 = 119/216`,
 //! `a32 = 17/108`, `b = (13/51, -2/3, 24/17)`). On an additive system the retractions are
 //! sums and the methods are the classical RK methods of the same tableau (orders 1 and 3).
-//! Invariants: the state moves only by `retract` (stays on the group up to rounding);
-//! stage workspace is a fixed array (no allocation per step). Failure: a non-finite stage
-//! value is a `non_finite` failure, the state is left unchanged.
+//! Invariants: the state moves only by `retract` (stays on the group up to rounding); the
+//! stages are a fixed array on the stack of each step (no allocation). Failure: a non-finite
+//! stage value is a `non_finite` failure, the state is left unchanged.
 use super::explicit_rk::FixedTableau;
 use super::tableau::{MAX_STAGES, Tableau};
 use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats, System};

@@ -18,9 +18,10 @@
 //!
 //! Orders: `euler` 1, `rk4` 4, on both kinds of systems. Invariants: the state moves only
 //! by `retract`, so it stays on the group up to the rounding of the retraction (the caller
-//! normalizes); the stage workspace is a fixed array inside the method (no allocation per
-//! step). Failure: a non-finite step increment is returned as a `non_finite` failure (the
-//! state is then left unchanged); the method has no other failure mode (explicit methods are
+//! normalizes); the stages are a fixed array on the stack of each step (no allocation), and
+//! the tableau is a type (`FixedTableau`), so the stage loop is unrolled at compile time.
+//! Failure: a non-finite step increment is returned as a `non_finite` failure (the state is
+//! then left unchanged); the method has no other failure mode (explicit methods are
 //! only conditionally stable: too large a step gives a growing but finite solution, caught by
 //! the caller's checks).
 use super::tableau::{EULER, MAX_STAGES, RK4, Tableau};
