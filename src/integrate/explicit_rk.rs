@@ -105,11 +105,6 @@ impl<S: System, T: FixedTableau> ExplicitRk<S, T> {
         const { assert!(T::TAB.stages() <= MAX_STAGES, "tableau too large") };
         ExplicitRk { _m: PhantomData }
     }
-
-    /// The tableau.
-    pub const fn tableau(&self) -> &'static Tableau {
-        T::TAB
-    }
 }
 
 impl<S: System, T: FixedTableau> Default for ExplicitRk<S, T> {
