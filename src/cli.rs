@@ -168,9 +168,9 @@ use std::collections::BTreeMap;
 
 use crate::case::{self, Case};
 use crate::plan;
+use crate::problem::{self, Entry, Family, Stepping, Want};
 use crate::reference;
 use crate::refgen;
-use crate::registry;
 use crate::suite::{self, RunOptions, VariantFilter};
 
 /// Exit codes (design.md): success, a run or check failed, bad input or usage.
@@ -231,34 +231,38 @@ pub fn execute(cli: Cli) -> i32 {
 
 fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
     let cases = load_cases(common)?;
-    let plans = plan::plans(&cases, &[], &[])?;
+    let problems = plan::problems(&cases, &[], &[])?;
+    // The families the cases use, in family-table order.
+    let families: Vec<&'static Family> = problem::FAMILIES
+        .iter()
+        .copied()
+        .filter(|f| problems.iter().any(|p| std::ptr::eq(p.family(), *f)))
+        .collect();
+    let registered: usize = families.iter().map(|f| (f.variants)().len()).sum();
     let mut scenes = vec![];
-    for p in &plans {
-        let mut variants = vec![];
-        for param in registry::PARAMS {
-            for integ in registry::INTEGRATORS {
-                for form in registry::FORMULATIONS {
-                    let (status, reason) = match registry::find(param, integ, form) {
-                        None => ("n/a", Some(registry::static_na_reason(param, integ, form))),
-                        Some(v) => match registry::scene_na_reason(v, &p.setup.body) {
-                            Some(r) => ("n/a", Some(r)),
-                            None => ("run", None),
-                        },
-                    };
-                    variants.push(serde_json::json!({
-                        "param": param, "integrator": integ, "formulation": form,
-                        "status": status, "reason": reason,
-                    }));
-                }
-            }
-        }
+    for p in &problems {
+        let variants: Vec<_> = problem::matrix(p.family())
+            .map(|cell| {
+                let (status, reason) = match cell.entry {
+                    Entry::NotApplicable(why) => ("n/a", Some(why)),
+                    Entry::Registered(v) => match p.na_reason(v) {
+                        Some(r) => ("n/a", Some(r)),
+                        None => ("run", None),
+                    },
+                };
+                serde_json::json!({
+                    "param": cell.param, "integrator": cell.integrator,
+                    "formulation": cell.formulation, "status": status, "reason": reason,
+                })
+            })
+            .collect();
         scenes.push(serde_json::json!({
-            "case": p.case, "scene": p.scene, "t_end": p.setup.grid.t_end,
+            "case": p.case(), "scene": p.scene(), "t_end": p.t_end(),
             "variants": variants,
         }));
     }
     if json {
-        let v = serde_json::json!({ "scenes": scenes, "registered": registry::variants().len() });
+        let v = serde_json::json!({ "scenes": scenes, "registered": registered });
         println!(
             "{}",
             serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?
@@ -271,8 +275,8 @@ fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
             println!("  scene {} (t_end {} s)", s.name, s.t_end);
         }
     }
-    println!("\nregistered variants: {}", registry::variants().len());
-    for v in registry::variants() {
+    println!("\nregistered variants: {registered}");
+    for v in families.iter().flat_map(|f| (f.variants)()) {
         println!(
             "  {:<12} {:<18} {:<8} order {} {}{}{}",
             v.param,
@@ -290,26 +294,27 @@ fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
     }
     println!("\nnot applicable:");
     let mut seen = BTreeMap::new();
-    for param in registry::PARAMS {
-        for integ in registry::INTEGRATORS {
-            for form in registry::FORMULATIONS {
-                if registry::find(param, integ, form).is_none() {
-                    seen.entry(registry::static_na_reason(param, integ, form))
-                        .or_insert_with(Vec::new)
-                        .push(format!("{param}/{integ}/{form}"));
-                }
-            }
+    for cell in families.iter().flat_map(|f| problem::matrix(f)) {
+        if let Entry::NotApplicable(why) = cell.entry {
+            seen.entry(why).or_insert_with(Vec::new).push(format!(
+                "{}/{}/{}",
+                cell.param, cell.integrator, cell.formulation
+            ));
         }
     }
     for (reason, list) in seen {
         println!("  {} combinations: {reason}", list.len());
     }
-    for p in &plans {
-        for v in registry::variants() {
-            if let Some(r) = registry::scene_na_reason(v, &p.setup.body) {
+    for p in &problems {
+        for v in (p.family().variants)() {
+            if let Some(r) = p.na_reason(v) {
                 println!(
                     "  {}/{}: {}/{}/{}: {r}",
-                    p.case, p.scene, v.param, v.integrator, v.formulation
+                    p.case(),
+                    p.scene(),
+                    v.param,
+                    v.integrator,
+                    v.formulation
                 );
             }
         }
@@ -324,7 +329,7 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
     {
         return Err(format!("--t-end {t}: must be a positive number"));
     }
-    let plans = plan::plans(&cases, &a.filters.case, &a.filters.scene)?;
+    let problems = plan::problems(&cases, &a.filters.case, &a.filters.scene)?;
     let filter = VariantFilter {
         param: a.filters.param.clone(),
         integrator: a.filters.integrator.clone(),
@@ -335,11 +340,13 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
         return Err(format!("unknown variant name(s): {}", bad.join(", ")));
     }
     if let Some(t) = a.t_end {
-        for p in &plans {
-            if crate::run::divides(t, p.setup.grid.score_every).is_none() {
+        for p in &problems {
+            if crate::run::divides(t, p.score_every()).is_none() {
                 return Err(format!(
                     "--t-end {t}: score_every = {} of {}/{} does not divide it",
-                    p.setup.grid.score_every, p.case, p.scene
+                    p.score_every(),
+                    p.case(),
+                    p.scene()
                 ));
             }
         }
@@ -356,17 +363,13 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
     let t0 = std::time::Instant::now();
     eprintln!(
         "mbdbench run: {} scenes, {} jobs{}",
-        plans.len(),
+        problems.len(),
         opts.jobs,
         if a.quick { ", quick tier" } else { "" }
     );
-    let summary = suite::run_catalogue(&plans, &filter, &opts)?;
-    let primary: BTreeMap<String, String> = cases
-        .iter()
-        .map(|c| (c.name.clone(), c.primary_metric.clone()))
-        .collect();
+    let summary = suite::run_catalogue(problems, &filter, &opts)?;
     let mut stdout = std::io::stdout().lock();
-    suite::print_table(&summary, &primary, &mut stdout).map_err(|e| e.to_string())?;
+    suite::print_table(&summary, &cases, &mut stdout).map_err(|e| e.to_string())?;
     let runs = summary
         .records
         .iter()
@@ -522,33 +525,35 @@ fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
 
 fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
     let cases = load_cases(common)?;
-    let plans = plan::plans(
+    let mut p = plan::problems(
         &cases,
         std::slice::from_ref(&a.case),
         std::slice::from_ref(&a.scene),
-    )?;
-    let mut plan = plans
-        .into_iter()
-        .find(|p| p.case == a.case && p.scene == a.scene)
-        .ok_or_else(|| format!("--scene {}: not in case {}", a.scene, a.case))?;
-    let v = registry::find(&a.param, &a.integrator, &a.formulation).ok_or_else(|| {
-        format!(
-            "{}/{}/{}: not a registered variant ({})",
-            a.param,
-            a.integrator,
-            a.formulation,
-            registry::static_na_reason(&a.param, &a.integrator, &a.formulation)
-        )
-    })?;
-    if let Some(r) = registry::scene_na_reason(v, &plan.setup.body) {
+    )?
+    .into_iter()
+    .find(|p| p.case() == a.case && p.scene() == a.scene)
+    .ok_or_else(|| format!("--scene {}: not in case {}", a.scene, a.case))?;
+    let family = p.family();
+    let v = family
+        .find(&a.param, &a.integrator, &a.formulation)
+        .ok_or_else(|| {
+            format!(
+                "{}/{}/{}: not a registered variant ({})",
+                a.param,
+                a.integrator,
+                a.formulation,
+                (family.static_na_reason)(&a.param, &a.integrator, &a.formulation)
+            )
+        })?;
+    if let Some(r) = p.na_reason(v) {
         return Err(format!(
             "{}/{}/{} is n/a here: {r}",
             a.param, a.integrator, a.formulation
         ));
     }
-    let value = match (a.dt, a.tol, v.info.adaptive) {
-        (Some(h), None, false) => h,
-        (None, Some(t), true) => t,
+    let stepping = match (a.dt, a.tol, v.info.adaptive) {
+        (Some(h), None, false) => Stepping::Dt(h),
+        (None, Some(t), true) => Stepping::Tol(t),
         (Some(_), _, true) => {
             return Err(format!(
                 "{} is adaptive: give --tol, not --dt",
@@ -563,6 +568,9 @@ fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
         }
         _ => return Err("give --dt or --tol".into()),
     };
+    let value = match stepping {
+        Stepping::Dt(x) | Stepping::Tol(x) => x,
+    };
     if !(value.is_finite() && value > 0.0) {
         return Err(format!("--dt/--tol {value}: must be a positive number"));
     }
@@ -570,29 +578,49 @@ fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
         if !(t.is_finite() && t > 0.0) {
             return Err(format!("--t-end {t}: must be a positive number"));
         }
-        plan.setup.grid.t_end = t;
+        p.set_t_end(t);
     }
-    if !v.info.adaptive && crate::run::divides(plan.setup.grid.score_every, value).is_none() {
+    if !v.info.adaptive && crate::run::divides(p.score_every(), value).is_none() {
         return Err(format!(
             "--dt {value}: does not divide score_every = {} (spec/cases.md rule)",
-            plan.setup.grid.score_every
+            p.score_every()
         ));
     }
-    let out = (v.run)(&plan.setup, value)?;
-    let body = &plan.setup.body;
-    let t: Vec<f64> = out.samples.iter().map(|s| s.t).collect();
-    let doc = serde_json::json!({
-        "case": a.case, "scene": a.scene, "param": a.param, "integrator": a.integrator,
-        "formulation": a.formulation,
-        "status": if out.failure.is_some() { "failed" } else { "ok" },
-        "failure": out.failure,
-        "t": t,
-        "position": out.samples.iter().map(|s| [s.obs.x.x, s.obs.x.y, s.obs.x.z]).collect::<Vec<_>>(),
-        "quaternion": out.samples.iter().map(|s| { let q = crate::math::so3::canonical(&s.obs.q); [q.w, q.i, q.j, q.k] }).collect::<Vec<_>>(),
-        "velocity": out.samples.iter().map(|s| [s.obs.v.x, s.obs.v.y, s.obs.v.z]).collect::<Vec<_>>(),
-        "omega_body": out.samples.iter().map(|s| [s.obs.omega.x, s.obs.omega.y, s.obs.omega.z]).collect::<Vec<_>>(),
-        "energy": out.samples.iter().map(|s| body.energy(&s.obs)).collect::<Vec<_>>(),
-    });
+    let out = p.run(v, stepping, Want::Trajectory)?;
+    let mut doc = serde_json::Map::new();
+    for (k, x) in [
+        ("case", &a.case),
+        ("scene", &a.scene),
+        ("param", &a.param),
+        ("integrator", &a.integrator),
+        ("formulation", &a.formulation),
+    ] {
+        doc.insert(k.into(), x.as_str().into());
+    }
+    let status = if out.failure.is_some() {
+        "failed"
+    } else {
+        "ok"
+    };
+    doc.insert("status".into(), status.into());
+    doc.insert(
+        "failure".into(),
+        serde_json::to_value(&out.failure).map_err(|e| e.to_string())?,
+    );
+    if let Some(cols) = &out.columns {
+        doc.insert(
+            "t".into(),
+            serde_json::to_value(&cols.t).map_err(|e| e.to_string())?,
+        );
+        for (name, width, values) in &cols.columns {
+            let v = if *width == 1 {
+                serde_json::to_value(values)
+            } else {
+                serde_json::to_value(values.chunks(*width).collect::<Vec<_>>())
+            };
+            doc.insert((*name).into(), v.map_err(|e| e.to_string())?);
+        }
+    }
     let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
     reference::write_atomic(&a.out, text.as_bytes())
         .map_err(|e| format!("{}: {e}", a.out.display()))?;

@@ -36,6 +36,7 @@ pub mod math;
 pub mod metrics;
 pub mod model;
 pub mod plan;
+pub mod problem;
 pub mod reference;
 pub mod refgen;
 pub mod registry;

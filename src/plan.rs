@@ -45,13 +45,13 @@ pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
     })
 }
 
-/// The plans of the selected cases and scenes (empty filter lists select all). A name in a
-/// filter that matches nothing is an error.
-pub fn plans(
-    cases: &[Case],
+/// The selected cases and scenes (empty filter lists select all), in file order. A name in
+/// a filter that matches nothing is an error.
+pub fn select<'c>(
+    cases: &'c [Case],
     case_filter: &[String],
     scene_filter: &[String],
-) -> Result<Vec<ScenePlan>, String> {
+) -> Result<Vec<(&'c Case, &'c Scene)>, String> {
     for c in case_filter {
         if !cases.iter().any(|k| &k.name == c) {
             return Err(format!(
@@ -73,13 +73,38 @@ pub fn plans(
             if !scene_filter.is_empty() && !scene_filter.contains(&s.name) {
                 continue;
             }
-            out.push(scene_plan(c, s).map_err(|e| e.to_string())?);
+            out.push((c, s));
         }
     }
     for s in scene_filter {
-        if !out.iter().any(|p| &p.scene == s) {
+        if !out.iter().any(|(_, sc)| &sc.name == s) {
             return Err(format!("--scene {s}: no such scene in the selected cases"));
         }
     }
     Ok(out)
+}
+
+/// The plans of the selected cases and scenes (empty filter lists select all). A name in a
+/// filter that matches nothing is an error.
+pub fn plans(
+    cases: &[Case],
+    case_filter: &[String],
+    scene_filter: &[String],
+) -> Result<Vec<ScenePlan>, String> {
+    select(cases, case_filter, scene_filter)?
+        .into_iter()
+        .map(|(c, s)| scene_plan(c, s).map_err(|e| e.to_string()))
+        .collect()
+}
+
+/// The compiled problems of the selected cases and scenes, each by its case's family.
+pub fn problems(
+    cases: &[Case],
+    case_filter: &[String],
+    scene_filter: &[String],
+) -> Result<Vec<Box<dyn crate::problem::Problem>>, String> {
+    select(cases, case_filter, scene_filter)?
+        .into_iter()
+        .map(|(c, s)| (crate::problem::family_of(c).compile)(c, s).map_err(|e| e.to_string()))
+        .collect()
 }

@@ -12,11 +12,12 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
+use crate::case::Case;
 use crate::integrate::MethodInfo;
 use crate::metrics::order;
-use crate::reference::{self, Loaded};
-use crate::registry::{self, Setup, Variant};
-use crate::score::{self, ScoreContext};
+use crate::problem::{self, Entry, Family, Problem, Stepping, Variant, Want};
+use crate::reference;
+use crate::registry::Setup;
 use crate::summary::{self, Env, FitRecord, Record, Status, Summary, Wall};
 
 /// Step ladders per method order class, and tolerances for adaptive methods.
@@ -74,21 +75,28 @@ impl VariantFilter {
             && Self::keep(&self.integrator, integrator)
             && Self::keep(&self.formulation, formulation)
     }
-    /// Names in the filter that are not known variant names (bad input).
+    /// Names in the filter that are not a name of any family's axes (bad input).
     pub fn unknown_names(&self) -> Vec<String> {
+        let fams = problem::FAMILIES;
         let mut bad = vec![];
         for p in &self.param {
-            if !registry::PARAMS.contains(&p.as_str()) {
+            if !fams.iter().any(|f| f.axes.params.contains(&p.as_str())) {
                 bad.push(format!("--param {p}"));
             }
         }
         for i in &self.integrator {
-            if !registry::variants().iter().any(|v| v.integrator == i) {
+            if !fams
+                .iter()
+                .any(|f| (f.variants)().iter().any(|v| v.integrator == i))
+            {
                 bad.push(format!("--integrator {i}"));
             }
         }
         for f in &self.formulation {
-            if !registry::FORMULATIONS.contains(&f.as_str()) {
+            if !fams
+                .iter()
+                .any(|x| x.axes.formulations.contains(&f.as_str()))
+            {
                 bad.push(format!("--formulation {f}"));
             }
         }
@@ -111,9 +119,9 @@ pub struct RunOptions {
     pub repeats: usize,
 }
 
-struct Job<'a> {
-    plan: usize,
-    variant: &'a Variant,
+struct Job {
+    problem: usize,
+    variant: &'static Variant,
     value: f64,
 }
 
@@ -122,13 +130,13 @@ struct Done {
     series: Option<(String, summary::Series)>,
 }
 
-/// Times one variant at one ladder value, without observation (`setup.observe` false):
-/// `repeats` runs when one takes under 1 s, else one; min and median. None if it cannot run.
-pub fn time_run(v: &Variant, setup: &Setup, value: f64, repeats: usize) -> Option<Wall> {
+/// Times one variant at one ladder value without observation (`Want::Timing`): `repeats`
+/// runs when one takes under 1 s, else one; min and median. None if it cannot run.
+pub fn time_run(p: &dyn Problem, v: &Variant, value: f64, repeats: usize) -> Option<Wall> {
     let mut times = Vec::with_capacity(repeats.max(1));
     for k in 0..repeats.max(1) {
         let t = Instant::now();
-        let r = std::hint::black_box((v.run)(setup, value));
+        let r = std::hint::black_box(p.run(v, v.stepping(value), Want::Timing));
         times.push(t.elapsed().as_secs_f64());
         if r.is_err() {
             return None;
@@ -193,10 +201,10 @@ impl Progress {
     }
 }
 
-fn base_record(plan: &ScenePlan, param: &str, integrator: &str, formulation: &str) -> Record {
+fn base_record(p: &dyn Problem, param: &str, integrator: &str, formulation: &str) -> Record {
     Record {
-        case: plan.case.clone(),
-        scene: plan.scene.clone(),
+        case: p.case().into(),
+        scene: p.scene().into(),
         param: param.into(),
         integrator: integrator.into(),
         formulation: formulation.into(),
@@ -209,7 +217,7 @@ fn base_record(plan: &ScenePlan, param: &str, integrator: &str, formulation: &st
         metric_reasons: BTreeMap::new(),
         stats: Default::default(),
         wall_s: None,
-        inputs_sha256: plan.inputs_sha256.clone(),
+        inputs_sha256: p.inputs_sha256().into(),
         reference_sha256: None,
         series: None,
     }
@@ -226,69 +234,53 @@ pub fn claim_for(r: &reference::Reference, metric: &str) -> f64 {
     }
 }
 
-/// Loads the references of the plans (none with a `--t-end` override). A missing or stale
-/// reference is bad input.
-pub fn load_references(
-    plans: &[ScenePlan],
-    opts: &RunOptions,
-) -> Result<Vec<Option<Loaded>>, String> {
-    plans
-        .iter()
-        .map(|p| {
-            if opts.t_end.is_some() {
-                return Ok(None);
-            }
-            reference::load(&opts.references, &p.case, &p.scene, &p.inputs_sha256)
-                .map(Some)
-                .map_err(|e| e.to_string())
-        })
-        .collect()
+/// Attaches the stored references of the problems (none with a `--t-end` override, which
+/// replaces every horizon instead). A missing or stale reference is bad input.
+pub fn prepare(problems: &mut [Box<dyn Problem>], opts: &RunOptions) -> Result<(), String> {
+    for p in problems.iter_mut() {
+        match opts.t_end {
+            Some(t) => p.set_t_end(t),
+            None => p.attach_reference(&opts.references)?,
+        }
+    }
+    Ok(())
 }
 
-/// Runs the catalogue over `plans` and writes the summary; returns it.
+/// Runs the catalogue over `problems` and writes the summary; returns it.
 pub fn run_catalogue(
-    plans: &[ScenePlan],
+    mut problems: Vec<Box<dyn Problem>>,
     filter: &VariantFilter,
     opts: &RunOptions,
 ) -> Result<Summary, String> {
-    let refs = load_references(plans, opts)?;
+    prepare(&mut problems, opts)?;
     let mut jobs: Vec<Job> = vec![];
     let mut records: Vec<Record> = vec![];
-    for (pi, plan) in plans.iter().enumerate() {
-        for param in registry::PARAMS {
-            for integ in registry::INTEGRATORS {
-                for form in registry::FORMULATIONS {
-                    if !filter.admits(param, integ, form) {
-                        continue;
-                    }
-                    match registry::find(param, integ, form) {
-                        None => {
-                            let mut r = base_record(plan, param, integ, form);
-                            r.reason = Some(registry::static_na_reason(param, integ, form));
-                            records.push(r);
-                        }
-                        Some(v) => {
-                            if let Some(why) = registry::scene_na_reason(v, &plan.setup.body) {
-                                let mut r = base_record(plan, param, integ, form);
-                                r.reason = Some(why);
-                                records.push(r);
-                                continue;
-                            }
-                            let ladders = if opts.quick {
-                                &plan.quick
-                            } else {
-                                &plan.ladders
-                            };
-                            for &value in ladders.for_method(&v.info) {
-                                jobs.push(Job {
-                                    plan: pi,
-                                    variant: v,
-                                    value,
-                                });
-                            }
-                        }
-                    }
+    for (pi, p) in problems.iter().enumerate() {
+        for cell in problem::matrix(p.family()) {
+            if !filter.admits(cell.param, cell.integrator, cell.formulation) {
+                continue;
+            }
+            let v = match cell.entry {
+                Entry::NotApplicable(why) => {
+                    let mut r = base_record(&**p, cell.param, cell.integrator, cell.formulation);
+                    r.reason = Some(why);
+                    records.push(r);
+                    continue;
                 }
+                Entry::Registered(v) => v,
+            };
+            if let Some(why) = p.na_reason(v) {
+                let mut r = base_record(&**p, cell.param, cell.integrator, cell.formulation);
+                r.reason = Some(why);
+                records.push(r);
+                continue;
+            }
+            for &value in p.ladder(opts.quick, &v.info) {
+                jobs.push(Job {
+                    problem: pi,
+                    variant: v,
+                    value,
+                });
             }
         }
     }
@@ -297,12 +289,11 @@ pub fn run_catalogue(
     // hands each thread a contiguous block it cannot split once started, and one core ground
     // through the long Euler runs alone (full ladder: 60.6 s wall on 2 cores for 70.7 s of
     // work). Records are sorted below, so the order does not show in the summary.
-    let t_end = |j: &Job| opts.t_end.unwrap_or(plans[j.plan].setup.grid.t_end);
     let steps = |j: &Job| {
         if j.variant.info.adaptive {
             0.0
         } else {
-            t_end(j) / j.value
+            problems[j.problem].t_end() / j.value
         }
     };
     jobs.sort_by(|a, b| steps(b).total_cmp(&steps(a)));
@@ -312,37 +303,28 @@ pub fn run_catalogue(
         .num_threads(opts.jobs.max(1))
         .build()
         .map_err(|e| e.to_string())?;
-    let plans_t: Vec<ScenePlan> = plans
-        .iter()
-        .map(|p| {
-            let mut p = p.clone();
-            if let Some(t) = opts.t_end {
-                p.setup.grid.t_end = t;
-            }
-            p
-        })
-        .collect();
-    let done: Vec<Done> = pool.install(|| {
+    let mut done: Vec<Done> = pool.install(|| {
         jobs.par_iter()
             .with_max_len(1)
             .map(|job| {
-                let plan = &plans_t[job.plan];
-                let d = run_job(plan, job, refs[job.plan].as_ref());
+                let d = run_job(&*problems[job.problem], job);
                 progress.tick();
                 d
             })
             .collect()
     });
     progress.finish();
-    // The timing pass: single-threaded, after the parallel pass, runs without observation.
-    let mut done = done;
+    // The timing pass, after the results pass: runs without observation.
     if opts.repeats > 0 {
         let timing = Progress::new(total, "timing", opts.progress);
         for (job, d) in jobs.iter().zip(done.iter_mut()) {
             if d.series.is_some() {
-                let mut setup = plans_t[job.plan].setup.clone();
-                setup.observe = crate::run::Observe::Final;
-                d.record.wall_s = time_run(job.variant, &setup, job.value, opts.repeats);
+                d.record.wall_s = time_run(
+                    &*problems[job.problem],
+                    job.variant,
+                    job.value,
+                    opts.repeats,
+                );
             }
             timing.tick();
         }
@@ -357,8 +339,12 @@ pub fn run_catalogue(
         }
         records.push(d.record);
     }
-    records.sort_by_key(record_key);
-    let fits = fit_orders(plans, &refs, &records);
+    let families: BTreeMap<String, &'static Family> = problems
+        .iter()
+        .map(|p| (p.case().to_string(), p.family()))
+        .collect();
+    records.sort_by_key(|r| record_key(&families, r));
+    let fits = fit_orders(&problems, &records);
     let summary = Summary {
         schema: 1,
         git_commit: summary::git_commit().into(),
@@ -374,17 +360,22 @@ pub fn run_catalogue(
     Ok(summary)
 }
 
-fn order_key(name: &str, list: &[&str]) -> usize {
-    list.iter().position(|x| *x == name).unwrap_or(usize::MAX)
+/// The report-order key of a record's variant in its case's family.
+fn variant_key(families: &BTreeMap<String, &'static Family>, r: &Record) -> [usize; 3] {
+    families
+        .get(&r.case)
+        .map(|f| f.order_key(&r.param, &r.integrator, &r.formulation))
+        .unwrap_or([usize::MAX; 3])
 }
 
-fn record_key(r: &Record) -> (String, String, usize, usize, usize, u64, u64) {
+fn record_key(
+    families: &BTreeMap<String, &'static Family>,
+    r: &Record,
+) -> (String, String, [usize; 3], u64, u64) {
     (
         r.case.clone(),
         r.scene.clone(),
-        order_key(&r.param, registry::PARAMS),
-        order_key(&r.integrator, registry::INTEGRATORS),
-        order_key(&r.formulation, registry::FORMULATIONS),
+        variant_key(families, r),
         // Coarse steps (loose tolerances) first: the finest ladder point of a variant is its
         // last record (the table shows it).
         r.dt.map(|x| u64::MAX - x.to_bits()).unwrap_or(0),
@@ -392,16 +383,16 @@ fn record_key(r: &Record) -> (String, String, usize, usize, usize, u64, u64) {
     )
 }
 
-fn run_job(plan: &ScenePlan, job: &Job, reference: Option<&Loaded>) -> Done {
+fn run_job(p: &dyn Problem, job: &Job) -> Done {
     let v = job.variant;
-    let mut rec = base_record(plan, v.param, v.integrator, v.formulation);
-    if v.info.adaptive {
-        rec.tol = Some(job.value);
-    } else {
-        rec.dt = Some(job.value);
+    let mut rec = base_record(p, v.param, v.integrator, v.formulation);
+    let stepping = v.stepping(job.value);
+    match stepping {
+        Stepping::Dt(h) => rec.dt = Some(h),
+        Stepping::Tol(t) => rec.tol = Some(t),
     }
-    rec.reference_sha256 = reference.map(|l| l.file_sha256.clone());
-    let out = match (v.run)(&plan.setup, job.value) {
+    rec.reference_sha256 = p.reference_sha256().map(str::to_string);
+    let out = match p.run(v, stepping, Want::Scored) {
         Ok(o) => o,
         Err(msg) => {
             rec.status = Status::Failed;
@@ -422,42 +413,33 @@ fn run_job(plan: &ScenePlan, job: &Job, reference: Option<&Loaded>) -> Done {
     } else {
         Status::Ok
     };
-    rec.failure = out.failure.clone();
-    let cx = ScoreContext {
-        body: &plan.setup.body,
-        energy_scale: plan.energy_scale,
-        primary_metric: &plan.primary_metric,
-        reference: reference.map(|l| &l.reference),
-    };
-    let (scores, series) = score::score(&out, &cx);
-    rec.metrics = scores.values;
-    rec.metric_reasons = scores.reasons;
+    rec.failure = out.failure;
+    rec.metrics = out.scores.values;
+    rec.metric_reasons = out.scores.reasons;
     let id = summary::run_id(v.param, v.integrator, v.formulation, rec.dt, rec.tol);
-    let rel = format!("series/{}/{}/{id}.json", plan.case, plan.scene);
+    let rel = format!("series/{}/{}/{id}.json", p.case(), p.scene());
     rec.series = Some(rel.clone());
     Done {
         record: rec,
-        series: Some((rel, series)),
+        series: out.series.map(|s| (rel, s)),
     }
 }
 
 /// Observed orders of the fixed-step variants over their ladders, on the primary metric.
-fn fit_orders(plans: &[ScenePlan], refs: &[Option<Loaded>], records: &[Record]) -> Vec<FitRecord> {
+fn fit_orders(problems: &[Box<dyn Problem>], records: &[Record]) -> Vec<FitRecord> {
     let mut fits = vec![];
-    for (pi, plan) in plans.iter().enumerate() {
-        let Some(loaded) = &refs[pi] else { continue };
-        let claim = claim_for(&loaded.reference, &plan.primary_metric);
-        let mut groups: BTreeMap<(usize, usize, usize), Vec<&Record>> = BTreeMap::new();
+    for p in problems {
+        let Some(claim) = p.accuracy_claim(p.primary_metric()) else {
+            continue;
+        };
+        let family = p.family();
+        let mut groups: BTreeMap<[usize; 3], Vec<&Record>> = BTreeMap::new();
         for r in records
             .iter()
-            .filter(|r| r.case == plan.case && r.scene == plan.scene && r.dt.is_some())
+            .filter(|r| r.case == p.case() && r.scene == p.scene() && r.dt.is_some())
         {
             groups
-                .entry((
-                    order_key(&r.param, registry::PARAMS),
-                    order_key(&r.integrator, registry::INTEGRATORS),
-                    order_key(&r.formulation, registry::FORMULATIONS),
-                ))
+                .entry(family.order_key(&r.param, &r.integrator, &r.formulation))
                 .or_default()
                 .push(r);
         }
@@ -467,18 +449,18 @@ fn fit_orders(plans: &[ScenePlan], refs: &[Option<Loaded>], records: &[Record]) 
                 .map(|r| {
                     (
                         r.dt.unwrap_or(0.0),
-                        r.metrics.get(&plan.primary_metric).copied().flatten(),
+                        r.metrics.get(p.primary_metric()).copied().flatten(),
                     )
                 })
                 .collect();
             let f = order::fit(&pts, claim);
             fits.push(FitRecord {
-                case: plan.case.clone(),
-                scene: plan.scene.clone(),
+                case: p.case().to_string(),
+                scene: p.scene().to_string(),
                 param: rs[0].param.clone(),
                 integrator: rs[0].integrator.clone(),
                 formulation: rs[0].formulation.clone(),
-                metric: plan.primary_metric.clone(),
+                metric: p.primary_metric().to_string(),
                 order: f.order,
                 reason: f.reason,
                 points: f.points,
@@ -499,7 +481,7 @@ fn num(v: Option<f64>) -> String {
 /// A readable table: per scene, one row per variant (finest ladder point).
 pub fn print_table(
     s: &Summary,
-    primary: &BTreeMap<String, String>,
+    cases: &[Case],
     out: &mut impl std::io::Write,
 ) -> std::io::Result<()> {
     let mut by_scene: BTreeMap<(String, String), Vec<&Record>> = BTreeMap::new();
@@ -556,18 +538,13 @@ pub fn print_table(
                 *failures.entry(k).or_default() += 1;
             }
         }
-        let primary = primary
-            .get(&case)
-            .cloned()
+        let case_file = cases.iter().find(|c| c.name == case);
+        let primary = case_file
+            .map(|c| c.primary_metric.clone())
             .unwrap_or_else(|| "rotation_error_max".into());
+        let family = case_file.map(problem::family_of);
         let mut keys: Vec<_> = last.keys().copied().collect();
-        keys.sort_by_key(|(p, i, f)| {
-            (
-                order_key(p, registry::PARAMS),
-                order_key(i, registry::INTEGRATORS),
-                order_key(f, registry::FORMULATIONS),
-            )
-        });
+        keys.sort_by_key(|(p, i, f)| family.map(|fam| fam.order_key(p, i, f)));
         for k in keys {
             let r = last[&k];
             let order = fits

@@ -22,9 +22,9 @@ fn real_quick_tier_passes_gates_and_baseline() {
         progress: false,
         repeats: 0,
     };
-    let plans = mbdbench::plan::plans(&cases, &[], &[]).unwrap();
+    let problems = mbdbench::plan::problems(&cases, &[], &[]).unwrap();
     let summary =
-        mbdbench::suite::run_catalogue(&plans, &mbdbench::suite::VariantFilter::default(), &opts)
+        mbdbench::suite::run_catalogue(problems, &mbdbench::suite::VariantFilter::default(), &opts)
             .unwrap();
     let baseline =
         std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reports/baseline/quick.json");

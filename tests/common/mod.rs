@@ -25,6 +25,13 @@ pub fn plans(case_name: &str, scenes: &[&str]) -> Vec<ScenePlan> {
     plan::plans(&cases, &[case_name.to_string()], &scenes).unwrap()
 }
 
+/// The compiled problems of one case (all its scenes, or the named ones).
+pub fn problems(case_name: &str, scenes: &[&str]) -> Vec<Box<dyn mbdbench::problem::Problem>> {
+    let cases = case::embedded().unwrap();
+    let scenes: Vec<String> = scenes.iter().map(|s| s.to_string()).collect();
+    plan::problems(&cases, &[case_name.to_string()], &scenes).unwrap()
+}
+
 /// Runs the selected scenes and variants with the full ladders (or the quick tier).
 pub fn run(
     case_name: &str,
@@ -46,7 +53,7 @@ pub fn run(
         progress: false,
         repeats: 0,
     };
-    let s = suite::run_catalogue(&plans(case_name, scenes), &filter, &opts).unwrap();
+    let s = suite::run_catalogue(problems(case_name, scenes), &filter, &opts).unwrap();
     let _ = std::fs::remove_dir_all(&out);
     s
 }

@@ -1,0 +1,115 @@
+//! The rigid-body family's line in the family table (`problem::FAMILIES`): its case-file key
+//! `rigid_body`, the three record axes in report order (the 11 pose charts, the integrators
+//! of the rigid core, the `body` / `spatial` Newton-Euler formulations), its metrics
+//! (design.md, "Files") and trajectory columns, and the registered variants of
+//! `registry.rs` as the family-independent [`Variant`] the suite dispatches through.
+use crate::case::{Case, CaseError, Scene};
+use crate::problem::{Axes, Column, Family, Metric, Problem, Variant};
+use crate::registry;
+
+/// The rigid-body family.
+pub static FAMILY: Family = Family {
+    model: "rigid_body",
+    axes: Axes {
+        params: registry::PARAMS,
+        integrators: registry::INTEGRATORS,
+        formulations: registry::FORMULATIONS,
+    },
+    metrics: METRICS,
+    columns: COLUMNS,
+    variants,
+    static_na_reason: registry::static_na_reason,
+    compile,
+};
+
+/// The metrics of rigid-body cases (design.md, "Files").
+pub const METRICS: &[Metric] = &[
+    Metric {
+        name: "position_error_max",
+        unit: "m",
+    },
+    Metric {
+        name: "rotation_error_max",
+        unit: "rad",
+    },
+    Metric {
+        name: "velocity_error_max",
+        unit: "m/s",
+    },
+    Metric {
+        name: "omega_error_max",
+        unit: "rad/s",
+    },
+    Metric {
+        name: "energy_drift_max",
+        unit: "1",
+    },
+    Metric {
+        name: "energy_drift_final",
+        unit: "1",
+    },
+    Metric {
+        name: "momentum_drift_max",
+        unit: "1",
+    },
+    Metric {
+        name: "constraint_error_max",
+        unit: "1",
+    },
+    Metric {
+        name: "conditioning_min",
+        unit: "1",
+    },
+];
+
+/// The trajectory and reference columns after `t` (design.md, "Files").
+pub const COLUMNS: &[Column] = &[
+    Column {
+        name: "position",
+        width: 3,
+        unit: "m",
+    },
+    Column {
+        name: "quaternion",
+        width: 4,
+        unit: "1",
+    },
+    Column {
+        name: "velocity",
+        width: 3,
+        unit: "m/s",
+    },
+    Column {
+        name: "omega_body",
+        width: 3,
+        unit: "rad/s",
+    },
+    Column {
+        name: "energy",
+        width: 1,
+        unit: "J",
+    },
+];
+
+/// The registered variants, in the order of `registry::variants()` (`index` into it).
+fn variants() -> &'static [Variant] {
+    static TABLE: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        registry::variants()
+            .iter()
+            .enumerate()
+            .map(|(index, v)| Variant {
+                param: v.param,
+                integrator: v.integrator,
+                formulation: v.formulation,
+                info: v.info,
+                index,
+            })
+            .collect()
+    })
+}
+
+fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {
+    let plan = crate::plan::scene_plan(case, scene)?;
+    Ok(Box::new(super::problem::RigidProblem::new(plan)))
+}

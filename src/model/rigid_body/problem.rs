@@ -1,0 +1,160 @@
+//! One compiled rigid-body scene behind the `Problem` seam: the scene plan (body, initial
+//! state, grid, limits, ladders, physics hash), its stored reference once attached, and the
+//! dispatch of a run to the registry's monomorphised run function of the variant. Scoring
+//! (`score.rs`) and the trajectory's named columns (design.md, "Files": position, quaternion,
+//! velocity, body angular velocity, energy at the sample times) are made here, so the suite
+//! sees only names and numbers.
+//!
+//! The timing pass runs the same function with `Observe::Final` on a setup prepared once, so
+//! a timed repeat does exactly the work of the scored run minus its observations.
+use std::path::Path;
+
+use crate::integrate::MethodInfo;
+use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
+use crate::reference::{self, Loaded};
+use crate::registry::{self, Setup};
+use crate::run::Observe;
+use crate::score::{self, ScoreContext};
+use crate::suite::ScenePlan;
+
+/// A rigid-body scene with its reference (once attached).
+#[derive(Debug, Clone)]
+pub struct RigidProblem {
+    pub plan: ScenePlan,
+    /// The plan's setup observing only the final state (the timing pass).
+    timing: Setup,
+    pub reference: Option<Loaded>,
+}
+
+impl RigidProblem {
+    pub fn new(plan: ScenePlan) -> Self {
+        let mut timing = plan.setup.clone();
+        timing.observe = Observe::Final;
+        RigidProblem {
+            plan,
+            timing,
+            reference: None,
+        }
+    }
+}
+
+/// The registry's variant behind a family variant.
+fn registered(v: &Variant) -> &'static registry::Variant {
+    &registry::variants()[v.index]
+}
+
+fn value(s: Stepping) -> f64 {
+    match s {
+        Stepping::Dt(h) => h,
+        Stepping::Tol(t) => t,
+    }
+}
+
+impl Problem for RigidProblem {
+    fn family(&self) -> &'static Family {
+        &super::family::FAMILY
+    }
+    fn case(&self) -> &str {
+        &self.plan.case
+    }
+    fn scene(&self) -> &str {
+        &self.plan.scene
+    }
+    fn inputs_sha256(&self) -> &str {
+        &self.plan.inputs_sha256
+    }
+    fn primary_metric(&self) -> &str {
+        &self.plan.primary_metric
+    }
+    fn t_end(&self) -> f64 {
+        self.plan.setup.grid.t_end
+    }
+    fn set_t_end(&mut self, t_end: f64) {
+        self.plan.setup.grid.t_end = t_end;
+        self.timing.grid.t_end = t_end;
+        self.reference = None;
+    }
+    fn score_every(&self) -> f64 {
+        self.plan.setup.grid.score_every
+    }
+    fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64] {
+        let l = if quick {
+            &self.plan.quick
+        } else {
+            &self.plan.ladders
+        };
+        l.for_method(info)
+    }
+    fn na_reason(&self, v: &Variant) -> Option<String> {
+        registry::scene_na_reason(registered(v), &self.plan.setup.body)
+    }
+    fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
+        let p = &self.plan;
+        self.reference = Some(
+            reference::load(root, &p.case, &p.scene, &p.inputs_sha256)
+                .map_err(|e| e.to_string())?,
+        );
+        Ok(())
+    }
+    fn reference_sha256(&self) -> Option<&str> {
+        self.reference.as_ref().map(|l| l.file_sha256.as_str())
+    }
+    fn accuracy_claim(&self, metric: &str) -> Option<f64> {
+        self.reference
+            .as_ref()
+            .map(|l| crate::suite::claim_for(&l.reference, metric))
+    }
+    fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String> {
+        let rv = registered(v);
+        let setup = match want {
+            Want::Timing => &self.timing,
+            Want::Scored | Want::Trajectory => &self.plan.setup,
+        };
+        let out = (rv.run)(setup, value(stepping))?;
+        let mut o = Outcome {
+            stats: out.stats,
+            failure: out.failure.clone(),
+            ..Outcome::default()
+        };
+        match want {
+            Want::Timing => {}
+            Want::Scored => {
+                let cx = ScoreContext {
+                    body: &self.plan.setup.body,
+                    energy_scale: self.plan.energy_scale,
+                    primary_metric: &self.plan.primary_metric,
+                    reference: self.reference.as_ref().map(|l| &l.reference),
+                };
+                let (scores, series) = score::score(&out, &cx);
+                o.scores = scores;
+                o.series = Some(series);
+            }
+            Want::Trajectory => o.columns = Some(columns(&self.plan, &out)),
+        }
+        Ok(o)
+    }
+}
+
+/// Every sample as the family's named columns (the quaternion in canonical sign, w >= 0).
+fn columns(plan: &ScenePlan, out: &crate::run::RunOutput) -> Columns {
+    let s = &out.samples;
+    let body = &plan.setup.body;
+    let flat = |f: &dyn Fn(&crate::run::Sample) -> Vec<f64>| s.iter().flat_map(f).collect();
+    Columns {
+        t: s.iter().map(|x| x.t).collect(),
+        columns: vec![
+            ("position", 3, flat(&|x| x.obs.x.as_slice().to_vec())),
+            (
+                "quaternion",
+                4,
+                flat(&|x| {
+                    let q = crate::math::so3::canonical(&x.obs.q);
+                    vec![q.w, q.i, q.j, q.k]
+                }),
+            ),
+            ("velocity", 3, flat(&|x| x.obs.v.as_slice().to_vec())),
+            ("omega_body", 3, flat(&|x| x.obs.omega.as_slice().to_vec())),
+            ("energy", 1, flat(&|x| vec![body.energy(&x.obs)])),
+        ],
+    }
+}

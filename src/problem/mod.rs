@@ -1,0 +1,218 @@
+//! The seam between the suite and the model families (design.md, "Model families and record
+//! axes"). A family (rigid bodies, later the flexible beam, the fiber column, mechanisms) is
+//! described once, statically, by a [`Family`] listed in [`FAMILIES`]: its case-file `model`
+//! key, the names and report order of the three record axes (`param`: how rotations are
+//! represented; `formulation`: how the equations of motion are written; `integrator`: how
+//! time or load is stepped), its metrics, its trajectory columns and its table of registered
+//! variants with the reasons every other combination is `n/a`. One scene of a case compiles
+//! into a [`Problem`], the object-safe trait through which the suite, the CLI and the gate
+//! run it: `run` is called once per run and dispatches, inside the family, to the same
+//! monomorphised hot loop as a direct call (no dynamic dispatch per step).
+//!
+//! Everything outside a family's folder reads the family's names from here; the variant
+//! matrix of [`matrix`] replaces hand-written loops over the three axes.
+//!
+//! # Example
+//!
+//! ```
+//! use mbdbench::problem::{self, Stepping, Want};
+//!
+//! let cases = mbdbench::case::embedded().unwrap();
+//! let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
+//! let family = problem::family_of(c);
+//! assert_eq!(family.model, "rigid_body");
+//! let mut p = (family.compile)(c, c.scene("two_angles").unwrap()).unwrap();
+//! p.attach_reference(&mbdbench::cli::default_references()).unwrap();
+//! let v = family.find("so3", "rk4", "body").unwrap();
+//! assert!(p.na_reason(v).is_none());
+//! let out = p.run(v, Stepping::Dt(1.0e-2), Want::Scored).unwrap();
+//! assert!(out.failure.is_none());
+//! let err = out.scores.get("rotation_error_max").unwrap();
+//! assert!(err < 1e-5 && err > 1e-8, "RKMK4 at 1e-2 s: {err:e}");
+//! ```
+use std::path::Path;
+
+use crate::case::{Case, CaseError, Scene};
+use crate::integrate::{Failure, MethodInfo, Stats};
+use crate::metrics::Scores;
+use crate::summary::Series;
+
+pub mod matrix;
+
+pub use crate::run::Stepping;
+pub use matrix::{Cell, Entry, matrix};
+
+/// The families, in report order. Adding a family is one line here plus its folder under
+/// `src/model/`.
+pub static FAMILIES: &[&Family] = &[&crate::model::rigid_body::family::FAMILY];
+
+/// The family a case belongs to (its `model` key, checked when the case was loaded).
+pub fn family_of(case: &Case) -> &'static Family {
+    find_family(case.model.name()).unwrap_or(FAMILIES[0])
+}
+
+/// The family with TOML `model` key `model`.
+pub fn find_family(model: &str) -> Option<&'static Family> {
+    FAMILIES.iter().copied().find(|f| f.model == model)
+}
+
+/// The names of the three record axes of a family, each in report order (colours and
+/// markers follow it).
+#[derive(Debug, Clone, Copy)]
+pub struct Axes {
+    pub params: &'static [&'static str],
+    pub integrators: &'static [&'static str],
+    pub formulations: &'static [&'static str],
+}
+
+/// One metric a family reports (design.md, "Files").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Metric {
+    pub name: &'static str,
+    pub unit: &'static str,
+}
+
+/// One named column of a family's trajectories and references: `width` numbers per sample.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Column {
+    pub name: &'static str,
+    pub width: usize,
+    pub unit: &'static str,
+}
+
+/// One registered variant of a family: its names on the three axes and its method facts.
+/// `index` is its place in the family's own table (the family dispatches on it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Variant {
+    pub param: &'static str,
+    pub integrator: &'static str,
+    pub formulation: &'static str,
+    pub info: MethodInfo,
+    pub index: usize,
+}
+
+impl Variant {
+    /// The stepping of ladder value `value` (a tolerance for an adaptive method, else a step).
+    pub fn stepping(&self, value: f64) -> Stepping {
+        if self.info.adaptive {
+            Stepping::Tol(value)
+        } else {
+            Stepping::Dt(value)
+        }
+    }
+}
+
+/// Compiles one scene of a validated case into a runnable problem.
+pub type Compile = fn(&Case, &Scene) -> Result<Box<dyn Problem>, CaseError>;
+
+/// A model family, described statically.
+pub struct Family {
+    /// The case file's `model` key.
+    pub model: &'static str,
+    pub axes: Axes,
+    /// Every metric the family can report; `primary_metric` is one of them.
+    pub metrics: &'static [Metric],
+    /// The trajectory and reference columns after `t`.
+    pub columns: &'static [Column],
+    /// The registered variants.
+    pub variants: fn() -> &'static [Variant],
+    /// Why a combination of axis names absent from the table is `n/a`.
+    pub static_na_reason: fn(&str, &str, &str) -> String,
+    /// Compiles one scene of a validated case.
+    pub compile: Compile,
+}
+
+impl std::fmt::Debug for Family {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Family({})", self.model)
+    }
+}
+
+impl Family {
+    /// A registered variant by its three names.
+    pub fn find(
+        &self,
+        param: &str,
+        integrator: &str,
+        formulation: &str,
+    ) -> Option<&'static Variant> {
+        (self.variants)().iter().find(|v| {
+            v.param == param && v.integrator == integrator && v.formulation == formulation
+        })
+    }
+
+    /// The report-order key of a combination (unknown names last).
+    pub fn order_key(&self, param: &str, integrator: &str, formulation: &str) -> [usize; 3] {
+        let pos = |list: &[&str], x: &str| list.iter().position(|y| *y == x).unwrap_or(usize::MAX);
+        [
+            pos(self.axes.params, param),
+            pos(self.axes.integrators, integrator),
+            pos(self.axes.formulations, formulation),
+        ]
+    }
+
+    /// Whether `name` is a metric of this family.
+    pub fn has_metric(&self, name: &str) -> bool {
+        self.metrics.iter().any(|m| m.name == name)
+    }
+}
+
+/// What a run keeps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Want {
+    /// Nothing but the work: the timing pass observes only the final state.
+    Timing,
+    /// The scores against the attached reference and the series at the score times.
+    Scored,
+    /// The scores, the series and every sample as named columns (`mbdbench trajectory`).
+    Trajectory,
+}
+
+/// Samples as named columns (`t` first), each a flat list of `width` numbers per sample.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Columns {
+    pub t: Vec<f64>,
+    pub columns: Vec<(&'static str, usize, Vec<f64>)>,
+}
+
+/// What one run returns.
+#[derive(Debug, Clone, Default)]
+pub struct Outcome {
+    pub stats: Stats,
+    pub failure: Option<Failure>,
+    /// Empty for `Want::Timing`.
+    pub scores: Scores,
+    /// None for `Want::Timing`.
+    pub series: Option<Series>,
+    /// Some for `Want::Trajectory`.
+    pub columns: Option<Columns>,
+}
+
+/// One compiled scene of a case, ready to run any of its family's variants.
+pub trait Problem: Send + Sync {
+    fn family(&self) -> &'static Family;
+    fn case(&self) -> &str;
+    fn scene(&self) -> &str;
+    /// The SHA-256 of the scene's physics (design.md, "Case file").
+    fn inputs_sha256(&self) -> &str;
+    /// The case's primary error metric.
+    fn primary_metric(&self) -> &str;
+    /// The horizon (s, or the load parameter's end for a static scene).
+    fn t_end(&self) -> f64;
+    /// Replaces the horizon (`--t-end`); errors against references are then absent.
+    fn set_t_end(&mut self, t_end: f64);
+    /// The score grid spacing (a `--t-end` must be a multiple of it).
+    fn score_every(&self) -> f64;
+    /// The ladder (steps, or tolerances for an adaptive method) of a method in a tier.
+    fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64];
+    /// Why a registered variant does not apply to this scene, if it does not.
+    fn na_reason(&self, v: &Variant) -> Option<String>;
+    /// Loads the stored reference of the scene from `root` and checks it (staleness, form).
+    fn attach_reference(&mut self, root: &Path) -> Result<(), String>;
+    /// The SHA-256 of the attached reference file.
+    fn reference_sha256(&self) -> Option<&str>;
+    /// The attached reference's accuracy claim for `metric` (the floor of order fits).
+    fn accuracy_claim(&self, metric: &str) -> Option<f64>;
+    /// One run. `Err` when the run cannot start (e.g. its step count is over the budget).
+    fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String>;
+}
