@@ -170,7 +170,6 @@ use crate::case::{self, Case};
 use crate::plan;
 use crate::problem::{self, Entry, Family, Stepping, Want};
 use crate::reference;
-use crate::refgen;
 use crate::suite::{self, RunOptions, VariantFilter};
 
 /// Exit codes (design.md): success, a run or check failed, bad input or usage.
@@ -638,37 +637,20 @@ fn cmd_reference(
     check: bool,
 ) -> Result<i32, String> {
     let cases = load_cases(common)?;
-    let c = cases
-        .iter()
-        .find(|c| c.name == case_name)
-        .ok_or_else(|| format!("--case {case_name}: no such case"))?;
+    if !cases.iter().any(|c| c.name == case_name) {
+        return Err(format!("--case {case_name}: no such case"));
+    }
     let scene_filter: Vec<String> = scene.map(|s| vec![s.to_string()]).unwrap_or_default();
-    let plans = plan::plans(&cases, &[case_name.to_string()], &scene_filter)?;
+    let problems = plan::problems(&cases, &[case_name.to_string()], &scene_filter)?;
     let root = common.references.clone().unwrap_or_else(default_references);
     let mut all_ok = true;
-    for p in &plans {
+    for p in &problems {
         if check {
-            let stored = reference::load(&root, &p.case, &p.scene, &p.inputs_sha256)
-                .map_err(|e| e.to_string())?;
-            let (ok, msg) = refgen::check(c.reference, p, &stored.reference)?;
+            let (ok, msg) = p.check_reference(&root)?;
             println!("{} {msg}", if ok { "pass" } else { "FAIL" });
             all_ok &= ok;
         } else {
-            let t0 = std::time::Instant::now();
-            let r = refgen::build(c.reference, p)?;
-            let path = reference::save(&root, &r).map_err(|e| e.to_string())?;
-            println!(
-                "{}: {} ({:.1} s); cross-check {}: rotation {:.2e}, omega {:.2e}, position {:?}; energy drift {:.2e}; claim rotation {:.2e}",
-                path.display(),
-                r.provenance.method,
-                t0.elapsed().as_secs_f64(),
-                r.provenance.cross_check.method,
-                r.provenance.cross_check.max_rotation_diff,
-                r.provenance.cross_check.max_omega_diff,
-                r.provenance.cross_check.max_position_diff,
-                r.provenance.energy_drift,
-                r.accuracy_claim.rotation
-            );
+            println!("{}", p.make_reference(&root)?);
         }
     }
     Ok(if all_ok { EXIT_OK } else { EXIT_FAILED })

@@ -2,6 +2,7 @@
 //! state, the grid, the work limits, the ladders and the physics hash of each scene.
 use crate::case::{self, Case, Ladder, OrderClass, Scene};
 use crate::integrate::Limits;
+use crate::model::rigid_body::case as rigid_case;
 use crate::registry::Setup;
 use crate::run::Grid;
 use crate::suite::{Ladders, ScenePlan};
@@ -18,7 +19,14 @@ fn ladders(l: &Ladder) -> Ladders {
 
 /// The plan of one scene.
 pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
-    let body = c.rigid_body(s)?;
+    let body = rigid_case::rigid_body(c, s)?;
+    let initial = rigid_case::RigidScene::of(s)
+        .map(rigid_case::initial)
+        .ok_or_else(|| case::CaseError {
+            file: c.file.clone(),
+            key: format!("scene[{}]", s.index),
+            message: "not a rigid-body scene".into(),
+        })?;
     let limits = Limits {
         max_steps: c.max_steps,
         max_rhs_evals: c.max_rhs_evals.unwrap_or(Limits::default().max_rhs_evals),
@@ -28,7 +36,7 @@ pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
         scene: s.name.clone(),
         setup: Setup {
             body,
-            initial: c.initial(s),
+            initial,
             grid: Grid {
                 t_end: s.t_end,
                 sample_every: s.sample_every,

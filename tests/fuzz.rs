@@ -335,16 +335,17 @@ fn check_error(label: &str, e: &CaseError) {
     }
 }
 
-/// The invariants of a loaded case (case.rs, "Invariants after loading").
+/// The invariants of a loaded case (case/mod.rs and the rigid family's case.rs, "Invariants after loading").
 fn check_case(c: &Case) {
     let finite3 = |v: &nalgebra::Vector3<f64>| v.iter().all(|x| x.is_finite());
     assert!(c.energy_scale.is_finite() && c.energy_scale > 0.0);
     assert!(c.max_steps >= 1);
     for s in &c.scenes {
-        assert!(finite3(&s.euler_xyz) && finite3(&s.position) && finite3(&s.velocity));
-        assert!(finite3(&s.omega0), "{}: omega0 {:?}", s.name, s.omega0);
-        assert!(s.inertia.iter().all(|x| x.is_finite()));
-        assert_eq!(s.inertia, s.inertia.transpose());
+        let r = mbdbench::model::rigid_body::case::RigidScene::of(s).unwrap();
+        assert!(finite3(&r.euler_xyz) && finite3(&r.position) && finite3(&r.velocity));
+        assert!(finite3(&r.omega0), "{}: omega0 {:?}", s.name, r.omega0);
+        assert!(r.inertia.iter().all(|x| x.is_finite()));
+        assert_eq!(r.inertia, r.inertia.transpose());
         assert!(s.t_end > 0.0 && s.t_end.is_finite());
         assert!(s.n_score >= 1 && s.samples_per_score >= 1);
         for quick in [false, true] {

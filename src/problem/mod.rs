@@ -48,7 +48,7 @@ pub static FAMILIES: &[&Family] = &[&crate::model::rigid_body::family::FAMILY];
 
 /// The family a case belongs to (its `model` key, checked when the case was loaded).
 pub fn family_of(case: &Case) -> &'static Family {
-    find_family(case.model.name()).unwrap_or(FAMILIES[0])
+    find_family(case.model).unwrap_or(FAMILIES[0])
 }
 
 /// The family with TOML `model` key `model`.
@@ -118,6 +118,11 @@ pub struct Family {
     pub variants: fn() -> &'static [Variant],
     /// Why a combination of axis names absent from the table is `n/a`.
     pub static_na_reason: fn(&str, &str, &str) -> String,
+    /// Parses and validates a whole case file of this family (`case::load_str` dispatches
+    /// on its `model` key): `(file label, text)`.
+    pub load: fn(&str, &str) -> Result<Case, CaseError>,
+    /// The family's physics of a scene in the physics hash (`case::hash`).
+    pub inputs: fn(&Case, &Scene) -> serde_json::Map<String, serde_json::Value>,
     /// Compiles one scene of a validated case.
     pub compile: Compile,
 }
@@ -215,4 +220,13 @@ pub trait Problem: Send + Sync {
     fn accuracy_claim(&self, metric: &str) -> Option<f64>;
     /// One run. `Err` when the run cannot start (e.g. its step count is over the budget).
     fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String>;
+    /// Computes the scene's reference (its primary trajectory, the cross-check by a run that
+    /// differs in integrator, parameterization and formulation, the accuracy claim) and
+    /// writes it under `root` (design.md, "References"); returns a line saying how it was
+    /// made and what the cross-check found.
+    fn make_reference(&self, root: &Path) -> Result<String, String>;
+    /// `reference --check`: recomputes the reference and compares it with the one stored
+    /// under `root`; whether it lies within the stored accuracy claim, and a line with the
+    /// differences.
+    fn check_reference(&self, root: &Path) -> Result<(bool, String), String>;
 }

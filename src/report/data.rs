@@ -215,7 +215,7 @@ impl<'a> CaseView<'a> {
     pub fn runs(&self) -> impl Iterator<Item = &'a Record> + '_ {
         self.scenes.iter().flat_map(|s| s.runs())
     }
-    /// The metrics any record of the case has, in `RIGID_BODY_METRICS` order (primary first),
+    /// The metrics any record of the case has, in the family's metric order (primary first),
     /// then unknown names alphabetically.
     pub fn metrics(&self) -> Vec<String> {
         let mut set: std::collections::BTreeSet<&str> = Default::default();
@@ -224,12 +224,16 @@ impl<'a> CaseView<'a> {
                 set.extend(r.metrics.keys().map(|k| k.as_str()));
             }
         }
-        let known = crate::case::RIGID_BODY_METRICS;
+        let family = self
+            .case
+            .map(crate::problem::family_of)
+            .unwrap_or(crate::problem::FAMILIES[0]);
+        let known: Vec<&str> = family.metrics.iter().map(|m| m.name).collect();
         let mut out: Vec<String> = vec![];
         if set.contains(self.primary.as_str()) {
             out.push(self.primary.clone());
         }
-        for m in known {
+        for m in &known {
             if set.contains(m) && *m != self.primary {
                 out.push(m.to_string());
             }

@@ -20,8 +20,9 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 
 use super::{Part, StudyOptions};
-use crate::case::{AngularInit, Case};
+use crate::case::Case;
 use crate::math::so3;
+use crate::model::rigid_body::case::{AngularInit, RigidScene};
 use crate::registry;
 use crate::summary::{Record, Status};
 
@@ -82,8 +83,11 @@ pub fn study(
         let mut s = template.clone();
         s.name = scene_name(k);
         let w = spin(d);
-        s.angular = AngularInit::World(w);
-        s.omega0 = s.r0.transpose() * w;
+        let rs = s
+            .physics_mut::<RigidScene>()
+            .ok_or("the singularity ladder needs a rigid-body scene")?;
+        rs.angular = AngularInit::World(w);
+        rs.omega0 = rs.r0.transpose() * w;
         let plan = crate::plan::scene_plan(c, &s).map_err(|e| e.to_string())?;
         plans.push((d, w, plan));
     }
@@ -220,8 +224,9 @@ mod tests {
         let c = cases.iter().find(|c| c.name == CASE).unwrap();
         let mut s = c.scene(TEMPLATE).unwrap().clone();
         let w = spin(1e-2);
-        s.angular = AngularInit::World(w);
-        s.omega0 = w;
+        let rs = s.physics_mut::<RigidScene>().unwrap();
+        rs.angular = AngularInit::World(w);
+        rs.omega0 = w;
         let generated = crate::plan::scene_plan(c, &s).unwrap();
         let stored = crate::plan::scene_plan(c, c.scene(TEMPLATE).unwrap()).unwrap();
         assert_eq!(generated.inputs_sha256, stored.inputs_sha256);

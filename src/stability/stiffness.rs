@@ -18,6 +18,7 @@ use super::search::{self, StudyScene};
 use super::{Part, StudyOptions, narrowed, step_search};
 use crate::case::Case;
 use crate::metrics::order::loglog_slope;
+use crate::model::rigid_body::case::RigidCase;
 use crate::suite::VariantFilter;
 use crate::summary::{FitRecord, Record};
 
@@ -39,8 +40,10 @@ pub fn scene_name(j: i32, fixed: bool) -> String {
 pub fn stiffened(c: &Case, j: i32) -> Case {
     let mut c = c.clone();
     let f = 10f64.powi(j);
-    for s in &mut c.springs {
-        s.stiffness *= f;
+    if let Some(rc) = c.physics_mut::<RigidCase>() {
+        for s in &mut rc.springs {
+            s.stiffness *= f;
+        }
     }
     c
 }

@@ -19,6 +19,8 @@ pub static FAMILY: Family = Family {
     columns: COLUMNS,
     variants,
     static_na_reason: registry::static_na_reason,
+    load: super::case::load,
+    inputs: super::case::inputs,
     compile,
 };
 
@@ -111,5 +113,8 @@ fn variants() -> &'static [Variant] {
 
 fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {
     let plan = crate::plan::scene_plan(case, scene)?;
-    Ok(Box::new(super::problem::RigidProblem::new(plan)))
+    Ok(Box::new(super::problem::RigidProblem::new(
+        plan,
+        case.reference,
+    )))
 }

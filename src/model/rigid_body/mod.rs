@@ -17,6 +17,7 @@
 //! Terms a scene does not have are absent (no springs loop, no gravity branch does work).
 //! A spring of zero current length has an undefined direction: its force is then taken as 0
 //! (the energy is still continuous there); no case comes near it.
+pub mod case;
 pub mod family;
 pub mod problem;
 

@@ -9,9 +9,11 @@
 //! a timed repeat does exactly the work of the scored run minus its observations.
 use std::path::Path;
 
+use crate::case::ReferenceKind;
 use crate::integrate::MethodInfo;
 use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
 use crate::reference::{self, Loaded};
+use crate::refgen;
 use crate::registry::{self, Setup};
 use crate::run::Observe;
 use crate::score::{self, ScoreContext};
@@ -21,17 +23,20 @@ use crate::suite::ScenePlan;
 #[derive(Debug, Clone)]
 pub struct RigidProblem {
     pub plan: ScenePlan,
+    /// How the case's references are made.
+    pub kind: ReferenceKind,
     /// The plan's setup observing only the final state (the timing pass).
     timing: Setup,
     pub reference: Option<Loaded>,
 }
 
 impl RigidProblem {
-    pub fn new(plan: ScenePlan) -> Self {
+    pub fn new(plan: ScenePlan, kind: ReferenceKind) -> Self {
         let mut timing = plan.setup.clone();
         timing.observe = Observe::Final;
         RigidProblem {
             plan,
+            kind,
             timing,
             reference: None,
         }
@@ -132,6 +137,29 @@ impl Problem for RigidProblem {
             Want::Trajectory => o.columns = Some(columns(&self.plan, &out)),
         }
         Ok(o)
+    }
+    fn make_reference(&self, root: &Path) -> Result<String, String> {
+        let t0 = std::time::Instant::now();
+        let r = refgen::build(self.kind, &self.plan)?;
+        let path = reference::save(root, &r).map_err(|e| e.to_string())?;
+        Ok(format!(
+            "{}: {} ({:.1} s); cross-check {}: rotation {:.2e}, omega {:.2e}, position {:?}; energy drift {:.2e}; claim rotation {:.2e}",
+            path.display(),
+            r.provenance.method,
+            t0.elapsed().as_secs_f64(),
+            r.provenance.cross_check.method,
+            r.provenance.cross_check.max_rotation_diff,
+            r.provenance.cross_check.max_omega_diff,
+            r.provenance.cross_check.max_position_diff,
+            r.provenance.energy_drift,
+            r.accuracy_claim.rotation
+        ))
+    }
+    fn check_reference(&self, root: &Path) -> Result<(bool, String), String> {
+        let p = &self.plan;
+        let stored = reference::load(root, &p.case, &p.scene, &p.inputs_sha256)
+            .map_err(|e| e.to_string())?;
+        refgen::check(self.kind, p, &stored.reference)
     }
 }
 

@@ -1,0 +1,777 @@
+//! Case files (`cases/*.toml`, design.md "Case file") to typed, validated structs: the part
+//! every model family shares, and the dispatch on `model = "..."` to the family that parses
+//! the whole file (`problem::Family::load`), so that unknown keys and key paths in errors
+//! work for every family.
+//!
+//! A file is read in two passes. First serde, with `deny_unknown_fields` everywhere, turns
+//! the TOML into the family's raw structs (declared with [`case_schema!`], which adds the
+//! shared keys); a syntax error, an unknown key or a wrong type comes back with a dotted key
+//! path (`keypath`). Second, the raw structs are checked against the physics and the
+//! conventions of the case-file specification, and the data a run needs is computed once:
+//! the shared part here ([`Ctx::assemble`]: name, primary metric among the family's metrics,
+//! budgets, each scene's grid and ladders, gates, `[stability]`), the family's physics by the
+//! family (held as a [`Payload`] of the case and of each scene).
+//!
+//! Invariants after loading: every number is finite; `score_every` divides `t_end`,
+//! `sample_every` divides `score_every` and every fixed step divides `score_every` by the
+//! rule of `ladder` (`n = round(T/h)`, `|n h - T| <= 1e-9 T`; the run then takes `n` steps
+//! of `T/n`). Errors are values naming the file, the key and what was expected; loading
+//! never panics.
+//!
+//! # Example
+//!
+//! ```
+//! let cases = mbdbench::case::embedded().unwrap();
+//! let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
+//! assert_eq!(c.model, "rigid_body");
+//! let s = c.scene("two_angles").unwrap();
+//! assert!(s.t_end > 0.0 && s.n_score >= 1);
+//! // Bad input is an error naming the file and the key.
+//! let text = mbdbench::case::embedded_sources()[3].1.replace("t_end = 10.0", "t_end = -1.0");
+//! let e = mbdbench::case::load_str("cases/nine_spring.toml", &text).unwrap_err();
+//! assert!(e.key.ends_with(".t_end"), "{e}");
+//! ```
+use std::any::Any;
+use std::fmt;
+use std::path::Path;
+
+use nalgebra::Vector3;
+use serde::{Deserialize, Serialize};
+
+pub mod gate;
+pub mod hash;
+mod keypath;
+pub mod ladder;
+
+pub use gate::{Bound, Gate, GateWhere, RawGate};
+pub use hash::{canonical_json, inputs_sha256, inputs_value};
+pub use ladder::{DIVIDES_REL_TOL, FixedStep, Ladder, OrderClass, RawLadders, steps_dividing};
+
+/// The only schema version this loader reads.
+pub const SCHEMA: i64 = 1;
+/// `max_steps` when a case does not set it.
+pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;
+
+/// The four catalogue files compiled into the binary, sorted by name.
+const EMBEDDED: [(&str, &str); 4] = [
+    (
+        "cases/free_body.toml",
+        include_str!("../../cases/free_body.toml"),
+    ),
+    (
+        "cases/gimbal_lock.toml",
+        include_str!("../../cases/gimbal_lock.toml"),
+    ),
+    (
+        "cases/heavy_top.toml",
+        include_str!("../../cases/heavy_top.toml"),
+    ),
+    (
+        "cases/nine_spring.toml",
+        include_str!("../../cases/nine_spring.toml"),
+    ),
+];
+
+// Errors
+
+/// A bad case file: which file, which key (dotted path, `scene[1].t_end`; empty when the
+/// problem is the whole file), and what was expected.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CaseError {
+    pub file: String,
+    pub key: String,
+    pub message: String,
+}
+
+impl fmt::Display for CaseError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.key.is_empty() {
+            write!(f, "{}: {}", self.file, self.message)
+        } else {
+            write!(f, "{}: {}: {}", self.file, self.key, self.message)
+        }
+    }
+}
+
+impl std::error::Error for CaseError {}
+
+/// How a case's references are made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ReferenceKind {
+    /// Integrated and stored under `references/` (design.md "References").
+    Numerical,
+    /// A closed-form solution computed at scoring time.
+    Exact,
+}
+
+/// A family's own data of a case or of a scene, held without the shared code naming its
+/// type; the family reads it back with [`Case::physics`] / [`Scene::physics`].
+pub trait Payload: Any + fmt::Debug + Send + Sync {
+    fn as_any(&self) -> &dyn Any;
+    fn as_any_mut(&mut self) -> &mut dyn Any;
+    fn clone_box(&self) -> Box<dyn Payload>;
+    fn eq_dyn(&self, other: &dyn Payload) -> bool;
+}
+
+impl<T: Any + fmt::Debug + Clone + PartialEq + Send + Sync> Payload for T {
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
+    fn clone_box(&self) -> Box<dyn Payload> {
+        Box::new(self.clone())
+    }
+    fn eq_dyn(&self, other: &dyn Payload) -> bool {
+        other.as_any().downcast_ref::<T>() == Some(self)
+    }
+}
+
+/// A family's data, owned by a case or a scene (cloned and compared through [`Payload`]).
+#[derive(Debug)]
+pub struct Physics(Box<dyn Payload>);
+
+impl Physics {
+    pub fn new(p: impl Payload) -> Self {
+        Physics(Box::new(p))
+    }
+    /// The data, if it is a `T`.
+    pub fn get<T: Payload>(&self) -> Option<&T> {
+        self.0.as_any().downcast_ref()
+    }
+    /// The data, mutable, if it is a `T`.
+    pub fn get_mut<T: Payload>(&mut self) -> Option<&mut T> {
+        self.0.as_any_mut().downcast_mut()
+    }
+}
+
+impl Clone for Physics {
+    fn clone(&self) -> Self {
+        Physics(self.0.clone_box())
+    }
+}
+
+impl PartialEq for Physics {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.eq_dyn(&*other.0)
+    }
+}
+
+/// One validated case file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Case {
+    /// The label it was loaded from (`cases/nine_spring.toml`).
+    pub file: String,
+    /// `case`: snake_case, equal to the file stem.
+    pub name: String,
+    pub title: String,
+    /// The family's `model` key (`problem::FAMILIES`).
+    pub model: &'static str,
+    /// One of the family's metrics.
+    pub primary_metric: String,
+    /// Relative energy drifts divide by `max(|E0|, energy_scale)` (the energy's unit).
+    pub energy_scale: f64,
+    pub reference: ReferenceKind,
+    /// Per-run step budget (default `DEFAULT_MAX_STEPS`).
+    pub max_steps: u64,
+    /// Per-run RHS-evaluation budget (None: the runner's default).
+    pub max_rhs_evals: Option<u64>,
+    pub scenes: Vec<Scene>,
+    pub gates: Vec<Gate>,
+    /// `[stability]`: the stability study's settings (None: the case is not in the study).
+    pub stability: Option<StabilitySpec>,
+    /// The family's own data of the case (a rigid body's body and springs).
+    pub physics: Physics,
+}
+
+/// `[stability]` (issue 4, `mbdbench stability`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StabilitySpec {
+    /// The horizon `t_h` in periods of the scene's fastest linearised mode
+    /// (`model::linear_modes`).
+    pub periods: f64,
+    /// rad: the accuracy bound of `largest_accurate_dt` (max geodesic rotation error over the
+    /// score times of the horizon).
+    pub rotation_error_max: f64,
+    /// Scenes of the quick tier (each names a scene of the case).
+    pub quick: Vec<String>,
+}
+
+/// `[[scene]]`: the family's initial state, a horizon and the scoring grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// `[A-Za-z0-9_-]+`, unique in its case.
+    pub name: String,
+    /// Position in the file (0-based), as in error keys `scene[i]`.
+    pub index: usize,
+    pub t_end: f64,
+    pub sample_every: f64,
+    pub score_every: f64,
+    /// Score intervals over the run: `round(t_end / score_every)`.
+    pub n_score: u64,
+    /// Sample intervals per score interval: `round(score_every / sample_every)`.
+    pub samples_per_score: u64,
+    /// The full tier.
+    pub ladders: Ladder,
+    /// The quick tier (a class absent from every `quick` table is empty: not run quick).
+    pub quick: Ladder,
+    /// The family's own data of the scene (a rigid body's initial state).
+    pub physics: Physics,
+}
+
+impl Scene {
+    /// The ladder of a tier.
+    pub fn ladder(&self, quick: bool) -> &Ladder {
+        if quick { &self.quick } else { &self.ladders }
+    }
+
+    /// The family's data of the scene, if it is a `T`.
+    pub fn physics<T: Payload>(&self) -> Option<&T> {
+        self.physics.get()
+    }
+
+    /// The same, mutable (studies that vary a scene's physics).
+    pub fn physics_mut<T: Payload>(&mut self) -> Option<&mut T> {
+        self.physics.get_mut()
+    }
+}
+
+impl Case {
+    /// The scene named `name`.
+    pub fn scene(&self, name: &str) -> Option<&Scene> {
+        self.scenes.iter().find(|s| s.name == name)
+    }
+
+    /// The family's data of the case, if it is a `T`.
+    pub fn physics<T: Payload>(&self) -> Option<&T> {
+        self.physics.get()
+    }
+
+    /// The same, mutable.
+    pub fn physics_mut<T: Payload>(&mut self) -> Option<&mut T> {
+        self.physics.get_mut()
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Loading
+
+/// Loads one case from its text; `file_label` names it in errors (`cases/<name>.toml`).
+pub fn load_str(file_label: &str, text: &str) -> Result<Case, CaseError> {
+    /// The one key read before the family's schema: which family parses the file.
+    #[derive(Deserialize)]
+    struct ModelKey {
+        model: String,
+    }
+    let m: ModelKey =
+        toml::from_str(text).map_err(|e| keypath::toml_error(file_label, text, &e))?;
+    let Some(family) = crate::problem::find_family(&m.model) else {
+        return Err(CaseError {
+            file: file_label.to_string(),
+            key: "model".into(),
+            message: format!(
+                "unknown model `{}`; expected one of {}",
+                m.model,
+                crate::problem::FAMILIES
+                    .iter()
+                    .map(|f| format!("`{}`", f.model))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        });
+    };
+    (family.load)(file_label, text)
+}
+
+/// Parses `text` into a family's raw (serde) case, errors with key paths.
+pub fn parse<T: serde::de::DeserializeOwned>(file_label: &str, text: &str) -> Result<T, CaseError> {
+    toml::from_str(text).map_err(|e| keypath::toml_error(file_label, text, &e))
+}
+
+/// Loads every `*.toml` of `dir`, sorted by file name; each file's `case` must equal its stem.
+pub fn load_dir(dir: &Path) -> Result<Vec<Case>, CaseError> {
+    let dir_label = dir.display().to_string();
+    let io = |e: std::io::Error| CaseError {
+        file: dir_label.clone(),
+        key: String::new(),
+        message: format!("cannot read the case directory: {e}"),
+    };
+    let mut paths = Vec::new();
+    for entry in std::fs::read_dir(dir).map_err(io)? {
+        let path = entry.map_err(io)?.path();
+        if path.extension().is_some_and(|x| x == "toml") && path.is_file() {
+            paths.push(path);
+        }
+    }
+    paths.sort();
+    if paths.is_empty() {
+        return Err(CaseError {
+            file: dir_label,
+            key: String::new(),
+            message: "no *.toml case files here".into(),
+        });
+    }
+    let mut cases = Vec::with_capacity(paths.len());
+    for path in paths {
+        let label = path.display().to_string();
+        let text = std::fs::read_to_string(&path).map_err(|e| CaseError {
+            file: label.clone(),
+            key: String::new(),
+            message: format!("cannot read: {e}"),
+        })?;
+        let case = load_str(&label, &text)?;
+        check_stem(&case, &path)?;
+        cases.push(case);
+    }
+    Ok(cases)
+}
+
+/// The catalogue compiled into the binary (`cases/` of the source tree), sorted by name.
+pub fn embedded() -> Result<Vec<Case>, CaseError> {
+    EMBEDDED
+        .iter()
+        .map(|(label, text)| {
+            let case = load_str(label, text)?;
+            check_stem(&case, Path::new(label))?;
+            Ok(case)
+        })
+        .collect()
+}
+
+/// `text` with every `[[gates]]` table removed (a gate table runs to the next table header):
+/// test fixtures append gates of their own to the real case files, whose gate indices would
+/// otherwise shift whenever the catalogue's gates change.
+#[cfg(test)]
+pub(crate) fn without_gates(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut in_gate = false;
+    for line in text.split_inclusive('\n') {
+        let head = line.trim_start();
+        if head.starts_with('[') {
+            in_gate = head.starts_with("[[gates]]");
+        }
+        if !in_gate {
+            out.push_str(line);
+        }
+    }
+    out
+}
+
+/// The embedded files as `(label, text)`.
+pub fn embedded_sources() -> &'static [(&'static str, &'static str)] {
+    &EMBEDDED
+}
+
+fn check_stem(case: &Case, path: &Path) -> Result<(), CaseError> {
+    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+    if stem != case.name {
+        return Err(CaseError {
+            file: case.file.clone(),
+            key: "case".into(),
+            message: format!(
+                "`{}` differs from the file name; expected `{stem}`",
+                case.name
+            ),
+        });
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------
+// The shared schema
+
+/// `[stability]` as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStability {
+    periods: f64,
+    rotation_error_max: f64,
+    #[serde(default)]
+    quick: Vec<String>,
+}
+
+/// The keys every case file has, as written (split off a family's raw case by
+/// [`case_schema!`]).
+pub struct RawShared {
+    pub schema: i64,
+    pub case: String,
+    pub title: String,
+    pub primary_metric: String,
+    pub energy_scale: f64,
+    pub reference: ReferenceKind,
+    pub max_steps: Option<f64>,
+    pub max_rhs_evals: Option<f64>,
+    pub ladders: RawLadders,
+    pub gates: Vec<RawGate>,
+    pub stability: Option<RawStability>,
+}
+
+/// The keys every scene has, as written.
+pub struct RawGrid {
+    pub name: String,
+    pub t_end: f64,
+    pub sample_every: f64,
+    pub score_every: f64,
+    pub ladders: Option<RawLadders>,
+}
+
+/// Declares a family's raw (serde) case file: the struct of the whole file (the shared keys
+/// of design.md's case file plus the family's own, `deny_unknown_fields`), the struct of one
+/// `[[scene]]` likewise, plain structs of the family's own keys, and `split`, which separates
+/// the shared keys ([`RawShared`], [`RawGrid`]) from the family's.
+///
+/// ```ignore
+/// mbdbench::case_schema! {
+///     case RawCase / CaseOwn { body: RawBody, #[serde(default)] spring: Vec<RawSpring> }
+///     scene RawScene / SceneOwn { euler_xyz: [f64; 3] }
+/// }
+/// ```
+#[macro_export]
+macro_rules! case_schema {
+    (
+        case $Case:ident / $CaseOwn:ident {
+            $( $(#[$cfm:meta])* $cf:ident : $ct:ty ),* $(,)?
+        }
+        scene $Scene:ident / $SceneOwn:ident {
+            $( $(#[$sfm:meta])* $sf:ident : $st:ty ),* $(,)?
+        }
+    ) => {
+        /// The whole case file as written.
+        #[derive(serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub(crate) struct $Case {
+            schema: i64,
+            case: String,
+            title: String,
+            #[allow(dead_code)]
+            model: String,
+            primary_metric: String,
+            energy_scale: f64,
+            reference: $crate::case::ReferenceKind,
+            max_steps: Option<f64>,
+            max_rhs_evals: Option<f64>,
+            scene: Vec<$Scene>,
+            ladders: $crate::case::RawLadders,
+            #[serde(default)]
+            gates: Vec<$crate::case::RawGate>,
+            stability: Option<$crate::case::RawStability>,
+            $( $(#[$cfm])* $cf: $ct, )*
+        }
+
+        /// One `[[scene]]` as written.
+        #[derive(serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub(crate) struct $Scene {
+            name: String,
+            t_end: f64,
+            sample_every: f64,
+            score_every: f64,
+            ladders: Option<$crate::case::RawLadders>,
+            $( $(#[$sfm])* $sf: $st, )*
+        }
+
+        /// The family's own keys of the case file.
+        pub(crate) struct $CaseOwn {
+            $( pub $cf: $ct, )*
+        }
+
+        /// The family's own keys of a scene.
+        pub(crate) struct $SceneOwn {
+            $( pub $sf: $st, )*
+        }
+
+        impl $Case {
+            /// The shared keys, the family's own, and each scene split likewise.
+            fn split(
+                self,
+            ) -> (
+                $crate::case::RawShared,
+                $CaseOwn,
+                Vec<($crate::case::RawGrid, $SceneOwn)>,
+            ) {
+                let scenes = self
+                    .scene
+                    .into_iter()
+                    .map(|s| {
+                        (
+                            $crate::case::RawGrid {
+                                name: s.name,
+                                t_end: s.t_end,
+                                sample_every: s.sample_every,
+                                score_every: s.score_every,
+                                ladders: s.ladders,
+                            },
+                            $SceneOwn { $( $sf: s.$sf, )* },
+                        )
+                    })
+                    .collect();
+                (
+                    $crate::case::RawShared {
+                        schema: self.schema,
+                        case: self.case,
+                        title: self.title,
+                        primary_metric: self.primary_metric,
+                        energy_scale: self.energy_scale,
+                        reference: self.reference,
+                        max_steps: self.max_steps,
+                        max_rhs_evals: self.max_rhs_evals,
+                        ladders: self.ladders,
+                        gates: self.gates,
+                        stability: self.stability,
+                    },
+                    $CaseOwn { $( $cf: self.$cf, )* },
+                    scenes,
+                )
+            }
+        }
+    };
+}
+
+// ---------------------------------------------------------------------------------------
+// Validation
+
+/// The validation context: which file errors name.
+pub struct Ctx<'a> {
+    pub file: &'a str,
+}
+
+/// A loading result.
+pub type Res<T> = Result<T, CaseError>;
+
+impl Ctx<'_> {
+    pub fn err<T>(&self, key: impl Into<String>, message: impl Into<String>) -> Res<T> {
+        Err(CaseError {
+            file: self.file.to_string(),
+            key: key.into(),
+            message: message.into(),
+        })
+    }
+
+    pub fn finite(&self, key: &str, x: f64) -> Res<f64> {
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            self.err(key, format!("{x} is not a finite number"))
+        }
+    }
+
+    pub fn positive(&self, key: &str, x: f64, what: &str) -> Res<f64> {
+        let x = self.finite(key, x)?;
+        if x > 0.0 {
+            Ok(x)
+        } else {
+            self.err(key, format!("{x} is not positive; expected {what} > 0"))
+        }
+    }
+
+    pub fn vec3(&self, key: &str, a: [f64; 3]) -> Res<Vector3<f64>> {
+        for (i, x) in a.iter().enumerate() {
+            self.finite(&format!("{key}[{i}]"), *x)?;
+        }
+        Ok(Vector3::from(a))
+    }
+
+    pub fn count(&self, key: &str, x: f64) -> Res<u64> {
+        let x = self.finite(key, x)?;
+        if x >= 1.0 && x.fract() == 0.0 && x <= 9.0e15 {
+            Ok(x as u64)
+        } else {
+            self.err(key, format!("{x}; expected a positive integer"))
+        }
+    }
+
+    pub fn name(&self, key: &str, s: &str, allow: impl Fn(char) -> bool, what: &str) -> Res<()> {
+        if !s.is_empty() && s.chars().all(allow) {
+            Ok(())
+        } else {
+            self.err(key, format!("`{s}`; expected {what}"))
+        }
+    }
+
+    /// The shared part of a case: checks the shared keys, lets the family check its own
+    /// (`case_physics` once, before the scenes; `scene_physics` per scene, after its name),
+    /// resolves every scene's grid and ladders, then the gates and `[stability]`.
+    pub fn assemble<C: Payload, O, S: Payload>(
+        &self,
+        family: &'static crate::problem::Family,
+        raw: RawShared,
+        case_physics: impl FnOnce(&Self) -> Res<C>,
+        scenes: Vec<(RawGrid, O)>,
+        scene_physics: impl Fn(&Self, usize, &O, &C) -> Res<S>,
+    ) -> Res<Case> {
+        if raw.schema != SCHEMA {
+            return self.err("schema", format!("{}; expected {SCHEMA}", raw.schema));
+        }
+        self.name(
+            "case",
+            &raw.case,
+            |c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_',
+            "a snake_case name ([a-z0-9_]+)",
+        )?;
+        if !family.has_metric(&raw.primary_metric) {
+            return self.err(
+                "primary_metric",
+                format!(
+                    "unknown metric `{}`; expected one of {}",
+                    raw.primary_metric,
+                    family
+                        .metrics
+                        .iter()
+                        .map(|m| m.name)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            );
+        }
+        let energy_scale = self.positive("energy_scale", raw.energy_scale, "an energy in J")?;
+        let max_steps = match raw.max_steps {
+            Some(x) => self.count("max_steps", x)?,
+            None => DEFAULT_MAX_STEPS,
+        };
+        let max_rhs_evals = raw
+            .max_rhs_evals
+            .map(|x| self.count("max_rhs_evals", x))
+            .transpose()?;
+        let physics = case_physics(self)?;
+        self.ladders_shape("ladders", &raw.ladders, true)?;
+        if scenes.is_empty() {
+            return self.err("scene", "no [[scene]]; expected at least one");
+        }
+        let mut out: Vec<Scene> = Vec::with_capacity(scenes.len());
+        for (i, (grid, own)) in scenes.iter().enumerate() {
+            self.name(
+                &format!("scene[{i}].name"),
+                &grid.name,
+                |c| c.is_ascii_alphanumeric() || c == '_' || c == '-',
+                "a scene name matching [A-Za-z0-9_-]+",
+            )?;
+            let scene_physics = scene_physics(self, i, own, &physics)?;
+            let scene = self.grid(
+                i,
+                grid,
+                &raw.ladders,
+                max_steps,
+                Physics::new(scene_physics),
+            )?;
+            if out.iter().any(|o| o.name == scene.name) {
+                return self.err(
+                    format!("scene[{i}].name"),
+                    format!(
+                        "`{}` is used twice; expected unique scene names",
+                        scene.name
+                    ),
+                );
+            }
+            out.push(scene);
+        }
+        let gates = raw
+            .gates
+            .into_iter()
+            .enumerate()
+            .map(|(i, g)| self.gate(i, g, &out, family.axes.formulations))
+            .collect::<Res<Vec<_>>>()?;
+        let stability = raw
+            .stability
+            .map(|st| self.stability(st, &out))
+            .transpose()?;
+        Ok(Case {
+            file: self.file.to_string(),
+            name: raw.case,
+            title: raw.title,
+            model: family.model,
+            primary_metric: raw.primary_metric,
+            energy_scale,
+            reference: raw.reference,
+            max_steps,
+            max_rhs_evals,
+            scenes: out,
+            gates,
+            stability,
+            physics: Physics::new(physics),
+        })
+    }
+
+    fn stability(&self, st: RawStability, scenes: &[Scene]) -> Res<StabilitySpec> {
+        let periods = self.positive("stability.periods", st.periods, "a number of periods")?;
+        let rotation_error_max = self.positive(
+            "stability.rotation_error_max",
+            st.rotation_error_max,
+            "a rotation error bound in rad",
+        )?;
+        for (i, name) in st.quick.iter().enumerate() {
+            if !scenes.iter().any(|s| &s.name == name) {
+                return self.err(
+                    format!("stability.quick[{i}]"),
+                    format!("`{name}` is no scene of this case"),
+                );
+            }
+        }
+        Ok(StabilitySpec {
+            periods,
+            rotation_error_max,
+            quick: st.quick,
+        })
+    }
+
+    /// A scene's horizon, grids and ladders.
+    fn grid(
+        &self,
+        i: usize,
+        s: &RawGrid,
+        case_l: &RawLadders,
+        max_steps: u64,
+        physics: Physics,
+    ) -> Res<Scene> {
+        let key = |k: &str| format!("scene[{i}].{k}");
+        let t_end = self.positive(&key("t_end"), s.t_end, "a horizon in s")?;
+        let sample_every = self.positive(&key("sample_every"), s.sample_every, "a time in s")?;
+        let score_every = self.positive(&key("score_every"), s.score_every, "a time in s")?;
+        let Some(n_score) = steps_dividing(t_end, score_every) else {
+            return self.err(
+                key("score_every"),
+                format!(
+                    "{score_every} s does not divide t_end = {t_end} s; expected t_end / \
+                     score_every to be an integer (to 1e-9 relative)"
+                ),
+            );
+        };
+        let Some(samples_per_score) = steps_dividing(score_every, sample_every) else {
+            return self.err(
+                key("sample_every"),
+                format!(
+                    "{sample_every} s does not divide score_every = {score_every} s; expected \
+                     score_every / sample_every to be an integer (to 1e-9 relative)"
+                ),
+            );
+        };
+        if let Some(l) = &s.ladders {
+            self.ladders_shape(&key("ladders"), l, false)?;
+        }
+        let span = ladder::Span {
+            index: i,
+            name: s.name.clone(),
+            t_end,
+            score_every,
+            n_score,
+        };
+        let ladders = self.tier(case_l, s.ladders.as_ref(), false, &span, max_steps)?;
+        let quick = self.tier(case_l, s.ladders.as_ref(), true, &span, max_steps)?;
+        Ok(Scene {
+            name: s.name.clone(),
+            index: i,
+            t_end,
+            sample_every,
+            score_every,
+            n_score,
+            samples_per_score,
+            ladders,
+            quick,
+            physics,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests;
