@@ -93,6 +93,10 @@ pub struct RunArgs {
     /// Override every selected scene's horizon (errors against references are then absent).
     #[arg(long = "t-end")]
     pub t_end: Option<f64>,
+    /// Time every run on one thread, one after another, after the results pass (for
+    /// publication numbers); by default the timing pass runs one job per `--jobs` worker.
+    #[arg(long = "serial-timing")]
+    pub serial_timing: bool,
 }
 
 /// The main job's run: everything, full ladders, into `reports/latest`.
@@ -104,6 +108,7 @@ impl Default for RunArgs {
             jobs: None,
             out: PathBuf::from("reports/latest"),
             t_end: None,
+            serial_timing: false,
         }
     }
 }
@@ -358,6 +363,7 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
         references: common.references.clone().unwrap_or_else(default_references),
         progress: true,
         repeats: 3,
+        serial_timing: a.serial_timing,
     };
     let t0 = std::time::Instant::now();
     eprintln!(

@@ -114,9 +114,25 @@ pub struct RunOptions {
     pub references: PathBuf,
     /// Print progress lines to stderr.
     pub progress: bool,
-    /// Timing repeats for runs under 1 s in the single-threaded timing pass (3 in the suite;
-    /// 0 skips the timing pass, where only results matter: `wall_s` is then null).
+    /// Timing repeats for runs under 1 s in the timing pass (3 in the suite; 0 skips the
+    /// timing pass, where only results matter: `wall_s` is then null).
     pub repeats: usize,
+    /// Time on one thread, one run after another (`--serial-timing`); otherwise the timing
+    /// pass runs one job per worker at a time, longest first.
+    pub serial_timing: bool,
+}
+
+impl RunOptions {
+    /// How the timing pass runs, as recorded in the summary's `env.timing`.
+    pub fn timing_mode(&self) -> String {
+        if self.repeats == 0 {
+            "none".into()
+        } else if self.serial_timing || self.jobs <= 1 {
+            "serial".into()
+        } else {
+            format!("parallel ({} workers)", self.jobs)
+        }
+    }
 }
 
 struct Job {
@@ -349,7 +365,7 @@ pub fn run_catalogue(
         schema: 1,
         git_commit: summary::git_commit().into(),
         created_utc: summary::now_utc(),
-        env: Env::current(opts.jobs),
+        env: Env::current(opts.jobs, Some(opts.timing_mode())),
         records,
         fits,
     };

@@ -75,6 +75,10 @@ pub struct Env {
     pub os: String,
     pub profile: String,
     pub threads: usize,
+    /// How the wall times were taken: `parallel (N workers)`, `serial` (`--serial-timing`,
+    /// or one worker) or `none` (no timing pass). Absent in summaries written before it.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub timing: Option<String>,
 }
 
 /// The whole summary.
@@ -99,8 +103,8 @@ pub fn rustc_version() -> &'static str {
 }
 
 impl Env {
-    /// The current machine and build.
-    pub fn current(threads: usize) -> Env {
+    /// The current machine and build; `timing` says how the wall times were taken.
+    pub fn current(threads: usize, timing: Option<String>) -> Env {
         let cpu = std::fs::read_to_string("/proc/cpuinfo")
             .ok()
             .and_then(|s| {
@@ -130,6 +134,7 @@ impl Env {
                 "release".into()
             },
             threads,
+            timing,
         }
     }
 }

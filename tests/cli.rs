@@ -319,7 +319,7 @@ fn report_with_corrupt_stability_json_warns_and_goes_on() {
         schema: 1,
         git_commit: "abc1234".into(),
         created_utc: "2026-01-02T03:04:05Z".into(),
-        env: mbdbench::summary::Env::current(1),
+        env: mbdbench::summary::Env::current(1, None),
         records: vec![],
         fits: vec![],
     };

@@ -953,6 +953,7 @@ proptest! {
             references: PathBuf::from("/nonexistent"),
             progress: false,
             repeats: 0,
+            serial_timing: false,
         };
         let filter = VariantFilter {
             param: vec![param.to_string()],

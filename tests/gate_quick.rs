@@ -21,6 +21,7 @@ fn real_quick_tier_passes_gates_and_baseline() {
         references: mbdbench::cli::default_references(),
         progress: false,
         repeats: 0,
+        serial_timing: false,
     };
     let problems = mbdbench::plan::problems(&cases, &[], &[]).unwrap();
     let summary =

@@ -123,6 +123,7 @@ pub fn summary(records: Vec<Record>) -> Summary {
             os: "os".into(),
             profile: "test".into(),
             threads: 1,
+            timing: None,
         },
         records,
         fits: vec![],

@@ -238,6 +238,7 @@ pub fn summary() -> Summary {
             os: "Test OS".into(),
             profile: "release".into(),
             threads: 2,
+            timing: None,
         },
         records,
         fits,

@@ -182,10 +182,15 @@ pub fn build_page(
                 .iter()
                 .map(|sv| SceneSection {
                     name: sv.name.clone(),
-                    work_precision: work_precision::plots(cv, sv, &foot)
-                        .iter()
-                        .map(figure)
-                        .collect(),
+                    work_precision: work_precision::plots(
+                        cv,
+                        sv,
+                        &foot,
+                        summary.env.timing.as_deref(),
+                    )
+                    .iter()
+                    .map(figure)
+                    .collect(),
                     convergence: convergence::plots(cv, sv, &foot)
                         .iter()
                         .map(figure)

@@ -1365,6 +1365,7 @@ mod tests {
                 os: "Test OS".into(),
                 profile: "release".into(),
                 threads: 2,
+                timing: None,
             },
             records,
             fits,

@@ -41,18 +41,40 @@ impl Cost {
 }
 
 /// The work-precision plots of a scene: each selection against wall time and RHS evaluations.
-pub fn plots(cv: &CaseView, sv: &SceneView, footer: &str) -> Vec<Plot> {
+/// `timing` says how the wall times were taken (the summary's `env.timing`; None for a
+/// summary written before it was recorded).
+pub fn plots(cv: &CaseView, sv: &SceneView, footer: &str, timing: Option<&str>) -> Vec<Plot> {
     let mut out = vec![];
     for sel in Selection::ALL {
         for cost in [Cost::Wall, Cost::Rhs] {
-            out.push(plot(cv, sv, sel, cost, footer));
+            out.push(plot(cv, sv, sel, cost, footer, timing));
         }
     }
     out
 }
 
+/// How the timing pass ran, as a clause of a wall-time caption.
+fn timing_clause(timing: Option<&str>) -> String {
+    match timing {
+        Some("serial") => "; timed one run at a time on one thread (--serial-timing)".into(),
+        Some(t) if t.starts_with("parallel") => format!(
+            "; timed {t}, one run per worker at a time beside the others (--serial-timing \
+             times one run at a time)"
+        ),
+        Some(t) => format!("; timing: {t}"),
+        None => String::new(),
+    }
+}
+
 /// One work-precision plot.
-pub fn plot(cv: &CaseView, sv: &SceneView, sel: Selection, cost: Cost, footer: &str) -> Plot {
+pub fn plot(
+    cv: &CaseView,
+    sv: &SceneView,
+    sel: Selection,
+    cost: Cost,
+    footer: &str,
+    timing: Option<&str>,
+) -> Plot {
     let mut lines = vec![];
     let mut fails = vec![];
     for v in sv.variants.iter().filter(|v| sel.admits(v)) {
@@ -79,11 +101,12 @@ pub fn plot(cv: &CaseView, sv: &SceneView, sel: Selection, cost: Cost, footer: &
         });
     }
     let what = match cost {
-        Cost::Wall => {
+        Cost::Wall => format!(
             "against wall time (the minimum over the timing repeats; machine-dependent, never \
-             gated)"
-        }
-        Cost::Rhs => "against right-hand-side evaluations (deterministic)",
+             gated{})",
+            timing_clause(timing)
+        ),
+        Cost::Rhs => "against right-hand-side evaluations (deterministic)".into(),
     };
     Plot {
         id: format!("{}/wp_{}_{}", sv.name, cost.id(), sel.id()),

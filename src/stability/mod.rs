@@ -214,7 +214,7 @@ pub fn run_study(
         schema: 1,
         git_commit: crate::summary::git_commit().into(),
         created_utc: crate::summary::now_utc(),
-        env: crate::summary::Env::current(opts.jobs),
+        env: crate::summary::Env::current(opts.jobs, None),
         records,
         fits: all.fits,
     };

@@ -52,6 +52,7 @@ pub fn run(
         references: default_references(),
         progress: false,
         repeats: 0,
+        serial_timing: false,
     };
     let s = suite::run_catalogue(problems(case_name, scenes), &filter, &opts).unwrap();
     let _ = std::fs::remove_dir_all(&out);
