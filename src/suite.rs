@@ -15,7 +15,7 @@ use std::time::Instant;
 use crate::case::Case;
 use crate::integrate::MethodInfo;
 use crate::metrics::order;
-use crate::problem::{self, Entry, Family, Problem, Stepping, Variant, Want};
+use crate::problem::{self, Entry, Problem, Stepping, Variant, Want};
 use crate::reference;
 use crate::registry::Setup;
 use crate::summary::{self, Env, FitRecord, Record, Status, Summary, Wall};
@@ -355,11 +355,7 @@ pub fn run_catalogue(
         }
         records.push(d.record);
     }
-    let families: BTreeMap<String, &'static Family> = problems
-        .iter()
-        .map(|p| (p.case().to_string(), p.family()))
-        .collect();
-    records.sort_by_key(|r| record_key(&families, r));
+    records.sort_by_key(Record::report_order);
     let fits = fit_orders(&problems, &records);
     let summary = Summary {
         schema: 1,
@@ -374,29 +370,6 @@ pub fn run_catalogue(
     reference::write_atomic(&path, text.as_bytes())
         .map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(summary)
-}
-
-/// The report-order key of a record's variant in its case's family.
-fn variant_key(families: &BTreeMap<String, &'static Family>, r: &Record) -> [usize; 3] {
-    families
-        .get(&r.case)
-        .map(|f| f.order_key(&r.param, &r.integrator, &r.formulation))
-        .unwrap_or([usize::MAX; 3])
-}
-
-fn record_key(
-    families: &BTreeMap<String, &'static Family>,
-    r: &Record,
-) -> (String, String, [usize; 3], u64, u64) {
-    (
-        r.case.clone(),
-        r.scene.clone(),
-        variant_key(families, r),
-        // Coarse steps (loose tolerances) first: the finest ladder point of a variant is its
-        // last record (the table shows it).
-        r.dt.map(|x| u64::MAX - x.to_bits()).unwrap_or(0),
-        r.tol.map(|x| u64::MAX - x.to_bits()).unwrap_or(0),
-    )
 }
 
 fn run_job(p: &dyn Problem, job: &Job) -> Done {
@@ -448,14 +421,13 @@ fn fit_orders(problems: &[Box<dyn Problem>], records: &[Record]) -> Vec<FitRecor
         let Some(claim) = p.accuracy_claim(p.primary_metric()) else {
             continue;
         };
-        let family = p.family();
         let mut groups: BTreeMap<[usize; 3], Vec<&Record>> = BTreeMap::new();
         for r in records
             .iter()
             .filter(|r| r.case == p.case() && r.scene == p.scene() && r.dt.is_some())
         {
             groups
-                .entry(family.order_key(&r.param, &r.integrator, &r.formulation))
+                .entry(r.variant_order())
                 .or_default()
                 .push(r);
         }
@@ -554,13 +526,13 @@ pub fn print_table(
                 *failures.entry(k).or_default() += 1;
             }
         }
-        let case_file = cases.iter().find(|c| c.name == case);
-        let primary = case_file
+        let primary = cases
+            .iter()
+            .find(|c| c.name == case)
             .map(|c| c.primary_metric.clone())
             .unwrap_or_else(|| "rotation_error_max".into());
-        let family = case_file.map(problem::family_of);
         let mut keys: Vec<_> = last.keys().copied().collect();
-        keys.sort_by_key(|(p, i, f)| family.map(|fam| fam.order_key(p, i, f)));
+        keys.sort_by_key(|(p, i, f)| problem::variant_order(p, i, f));
         for k in keys {
             let r = last[&k];
             let order = fits

@@ -52,6 +52,25 @@ pub struct Record {
     pub series: Option<String>,
 }
 
+impl Record {
+    /// The variant's place in the families' axis order (`problem::axis_names`).
+    pub fn variant_order(&self) -> [usize; 3] {
+        crate::problem::variant_order(&self.param, &self.integrator, &self.formulation)
+    }
+
+    /// The report order of records: case, scene, variant, then coarse steps (loose
+    /// tolerances) first, so the finest ladder point of a variant is its last record.
+    pub fn report_order(&self) -> (String, String, [usize; 3], u64, u64) {
+        (
+            self.case.clone(),
+            self.scene.clone(),
+            self.variant_order(),
+            self.dt.map_or(0, |x| u64::MAX - x.to_bits()),
+            self.tol.map_or(0, |x| u64::MAX - x.to_bits()),
+        )
+    }
+}
+
 /// An observed order over a ladder.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FitRecord {

@@ -26,7 +26,6 @@ use super::load::{load_as, load_summary};
 use super::{GateError, GateRow, Verdict, failure_text, metric_value};
 use crate::case::{self, Case};
 use crate::reference::{self, Reference};
-use crate::registry;
 use crate::suite::claim_for;
 use crate::summary::{Record, Status, Summary};
 
@@ -79,20 +78,6 @@ fn run_key(r: &Record) -> RunKey<'_> {
         &r.formulation,
         r.dt.map_or(0, f64::to_bits),
         r.tol.map_or(0, f64::to_bits),
-    )
-}
-
-/// Report order: case, scene, registry order of the variant, then coarse to fine.
-fn order_key(r: &Record) -> (String, String, usize, usize, usize, u64, u64) {
-    let pos = |v: &str, l: &[&str]| l.iter().position(|x| *x == v).unwrap_or(usize::MAX);
-    (
-        r.case.clone(),
-        r.scene.clone(),
-        pos(&r.param, registry::PARAMS),
-        pos(&r.integrator, registry::INTEGRATORS),
-        pos(&r.formulation, registry::FORMULATIONS),
-        r.dt.map_or(0, |x| u64::MAX - x.to_bits()),
-        r.tol.map_or(0, |x| u64::MAX - x.to_bits()),
     )
 }
 
@@ -153,7 +138,7 @@ pub fn compare_baseline(
         .iter()
         .filter(|r| r.status != Status::NotApplicable)
         .collect();
-    now.sort_by_key(|r| order_key(r));
+    now.sort_by_key(|r| r.report_order());
     let mut claims: BTreeMap<(String, String), Result<Reference, String>> = BTreeMap::new();
     let mut stale: BTreeMap<(String, String), usize> = BTreeMap::new();
     let mut common = 0usize;

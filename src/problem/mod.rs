@@ -56,6 +56,56 @@ pub fn find_family(model: &str) -> Option<&'static Family> {
     FAMILIES.iter().copied().find(|f| f.model == model)
 }
 
+/// One of the three record axes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Axis {
+    Param,
+    Integrator,
+    Formulation,
+}
+
+/// The names of one axis over every family: the families in table order, each in its own
+/// order, each name once. The report's colours, markers and orders follow it, so a family's
+/// names look the same in every plot and a name shared by two families looks the same in both.
+pub fn axis_names(axis: Axis) -> &'static [&'static str] {
+    use std::sync::OnceLock;
+    static NAMES: [OnceLock<Vec<&'static str>>; 3] =
+        [OnceLock::new(), OnceLock::new(), OnceLock::new()];
+    let (slot, pick): (usize, fn(&Axes) -> &'static [&'static str]) = match axis {
+        Axis::Param => (0, |a| a.params),
+        Axis::Integrator => (1, |a| a.integrators),
+        Axis::Formulation => (2, |a| a.formulations),
+    };
+    NAMES[slot].get_or_init(|| {
+        let mut out: Vec<&'static str> = vec![];
+        for f in FAMILIES {
+            for n in pick(&f.axes) {
+                if !out.contains(n) {
+                    out.push(n);
+                }
+            }
+        }
+        out
+    })
+}
+
+/// The place of `name` in [`axis_names`] (`usize::MAX` for a name no family has).
+pub fn axis_position(axis: Axis, name: &str) -> usize {
+    axis_names(axis)
+        .iter()
+        .position(|x| *x == name)
+        .unwrap_or(usize::MAX)
+}
+
+/// A variant's place in the families' axis order: (param, integrator, formulation).
+pub fn variant_order(param: &str, integrator: &str, formulation: &str) -> [usize; 3] {
+    [
+        axis_position(Axis::Param, param),
+        axis_position(Axis::Integrator, integrator),
+        axis_position(Axis::Formulation, formulation),
+    ]
+}
+
 /// The names of the three record axes of a family, each in report order (colours and
 /// markers follow it).
 #[derive(Debug, Clone, Copy)]
@@ -144,16 +194,6 @@ impl Family {
         (self.variants)().iter().find(|v| {
             v.param == param && v.integrator == integrator && v.formulation == formulation
         })
-    }
-
-    /// The report-order key of a combination (unknown names last).
-    pub fn order_key(&self, param: &str, integrator: &str, formulation: &str) -> [usize; 3] {
-        let pos = |list: &[&str], x: &str| list.iter().position(|y| *y == x).unwrap_or(usize::MAX);
-        [
-            pos(self.axes.params, param),
-            pos(self.axes.integrators, integrator),
-            pos(self.axes.formulations, formulation),
-        ]
     }
 
     /// Whether `name` is a metric of this family.

@@ -31,6 +31,7 @@ use std::ops::Range;
 
 use super::axes::AxisSpec;
 use super::data::VariantKey;
+use crate::problem::{Axis, axis_position};
 use super::style::{self, INK, Marker};
 
 /// Total width of every plot (px).
@@ -468,12 +469,7 @@ fn legend_entries(p: &Plot) -> Vec<Entry> {
                     params.push(&k.param);
                 }
             }
-            integrators.sort_by_key(|i| {
-                crate::registry::INTEGRATORS
-                    .iter()
-                    .position(|x| x == i)
-                    .unwrap_or(usize::MAX)
-            });
+            integrators.sort_by_key(|i| axis_position(Axis::Integrator, i));
             out.push(Entry::Heading("integrator (colour)".into()));
             for i in integrators {
                 out.push(Entry::Sample {

@@ -2,8 +2,8 @@
 //! ladder sorted coarse to fine (largest step or loosest tolerance first), with its order fit,
 //! plus the per-run series files found on disk.
 //!
-//! Invariants: variants appear in registry order (`PARAMS`, `INTEGRATORS`, `FORMULATIONS`;
-//! names unknown to the registry sort after, alphabetically); scenes in the case file's order
+//! Invariants: variants appear in the families' axis order (`problem::axis_names`;
+//! names no family has sort after, alphabetically); scenes in the case file's order
 //! (unknown scenes after, alphabetically); cases in the order of the `cases` slice, then cases
 //! absent from it. A variant's runs are either all fixed-step (`dt`) or all adaptive (`tol`).
 //! A missing or unreadable series file is `None`, never an error: the plots say "no data".
@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use crate::case::Case;
-use crate::registry;
+use crate::problem::{Axis, axis_position};
 use crate::summary::{FitRecord, Record, Series, Status, Summary, run_id};
 
 /// A variant: parameterization x integrator x formulation.
@@ -22,9 +22,6 @@ pub struct VariantKey {
     pub formulation: String,
 }
 
-fn position(list: &[&str], name: &str) -> usize {
-    list.iter().position(|x| *x == name).unwrap_or(list.len())
-}
 
 impl VariantKey {
     /// The variant of a record.
@@ -51,11 +48,11 @@ impl VariantKey {
 
     fn rank(&self) -> (usize, &str, usize, &str, usize, &str) {
         (
-            position(registry::PARAMS, &self.param),
+            axis_position(Axis::Param, &self.param),
             &self.param,
-            position(registry::INTEGRATORS, &self.integrator),
+            axis_position(Axis::Integrator, &self.integrator),
             &self.integrator,
-            position(registry::FORMULATIONS, &self.formulation),
+            axis_position(Axis::Formulation, &self.formulation),
             &self.formulation,
         )
     }

@@ -18,6 +18,7 @@ use std::collections::BTreeMap;
 
 use super::data::{CaseView, SceneView, VariantKey, num, step_label};
 use super::tables::kind_name;
+use crate::problem::{Axis, axis_names};
 use crate::summary::{Record, Status};
 
 /// The accuracy a "cheapest" run must reach (primary metric, its own units).
@@ -233,8 +234,8 @@ fn failure_sentence(cv: &CaseView) -> String {
         .map(|(kind, (n, ps, is))| {
             format!(
                 "{kind} {n} ({} with {})",
-                order(crate::registry::PARAMS, ps),
-                order(crate::registry::INTEGRATORS, is)
+                order(axis_names(Axis::Param), ps),
+                order(axis_names(Axis::Integrator), is)
             )
         })
         .collect();

@@ -16,6 +16,7 @@ use std::collections::BTreeSet;
 use super::chart::{FailMark, Legend, Line, Plot};
 use super::data::{self, CaseView, VariantKey};
 use super::select::Selection;
+use crate::problem::{Axis, axis_names};
 use crate::summary::{Record, Status};
 
 /// What the y axis shows.
@@ -114,15 +115,16 @@ pub fn chosen_values(cv: &CaseView, sel: Selection) -> (Vec<(VariantKey, Option<
 pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
     let names: Vec<String> = cv.scenes.iter().map(|s| s.name.clone()).collect();
     let (chosen, common) = chosen_values(cv, sel);
-    let n_params = crate::registry::PARAMS.len() as f64;
+    let params = axis_names(Axis::Param);
+    let n_params = params.len() as f64;
     let mut lines = vec![];
     let mut fails = vec![];
     for (k, value) in &chosen {
         let Some(value) = value else { continue };
-        let p_idx = crate::registry::PARAMS
+        let p_idx = params
             .iter()
             .position(|p| *p == k.param)
-            .unwrap_or(crate::registry::PARAMS.len()) as f64;
+            .unwrap_or(params.len()) as f64;
         // Spread over 70% of a category's width, by parameterization.
         let jitter = 0.7 * (p_idx - 0.5 * (n_params - 1.0)) / n_params;
         let mut points = vec![];

@@ -6,14 +6,15 @@
 //! triangles for the three Euler-angle charts, diamonds for the rotation vector (hollow) and
 //! the SO(3) group chart (filled), circles for quaternions and squares for matrices (hollow:
 //! additive, no projection; filled: projected after each step), a cross and a plus for the
-//! two SE(3) charts. Colours follow the order of `registry::INTEGRATORS` (a categorical
-//! palette chosen for contrast on white). A name the registry does not know (a later issue's
-//! method) gets a colour/marker from a hash of its name: stable, but possibly shared.
+//! two SE(3) charts (the rigid family's chart order). Colours follow the integrator order of
+//! `problem::axis_names` (every family's integrators in table order; a categorical palette
+//! chosen for contrast on white), markers its parameterization order. A name past the palette
+//! gets a colour from a hash of its name: stable, but possibly shared.
 use plotters::style::RGBColor;
 
-use crate::registry;
+use crate::problem::{Axis, axis_position};
 
-/// The integrator colours, in `registry::INTEGRATORS` order.
+/// The integrator colours, in `axis_names(Axis::Integrator)` order.
 const INTEGRATOR_COLOURS: [RGBColor; 15] = [
     RGBColor(127, 127, 127), // euler: grey
     RGBColor(31, 119, 180),  // rk4: blue
@@ -32,7 +33,7 @@ const INTEGRATOR_COLOURS: [RGBColor; 15] = [
     RGBColor(99, 99, 99),    // simo_wong_kahan: dark grey
 ];
 
-/// Extra colours for integrators the registry does not list.
+/// Extra colours for integrators past the palette.
 const SPARE_COLOURS: [RGBColor; 4] = [
     RGBColor(255, 187, 120),
     RGBColor(152, 223, 138),
@@ -57,7 +58,7 @@ pub enum Marker {
     TriangleUpHollow,
 }
 
-/// The parameterization markers, in `registry::PARAMS` order.
+/// The parameterization markers, in `axis_names(Axis::Param)` order.
 const PARAM_MARKERS: [Marker; 11] = [
     Marker::TriangleUp,    // euler_xyz
     Marker::TriangleDown,  // euler_zyx
@@ -84,16 +85,16 @@ fn hash(name: &str) -> usize {
 
 /// The colour of an integrator.
 pub fn colour(integrator: &str) -> RGBColor {
-    match registry::INTEGRATORS.iter().position(|x| *x == integrator) {
-        Some(i) if i < INTEGRATOR_COLOURS.len() => INTEGRATOR_COLOURS[i],
+    match axis_position(Axis::Integrator, integrator) {
+        i if i < INTEGRATOR_COLOURS.len() => INTEGRATOR_COLOURS[i],
         _ => SPARE_COLOURS[hash(integrator) % SPARE_COLOURS.len()],
     }
 }
 
 /// The marker of a parameterization.
 pub fn marker(param: &str) -> Marker {
-    match registry::PARAMS.iter().position(|x| *x == param) {
-        Some(i) if i < PARAM_MARKERS.len() => PARAM_MARKERS[i],
+    match axis_position(Axis::Param, param) {
+        i if i < PARAM_MARKERS.len() => PARAM_MARKERS[i],
         _ => Marker::TriangleUpHollow,
     }
 }
@@ -114,17 +115,26 @@ pub const INK: RGBColor = RGBColor(60, 60, 60);
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::problem::axis_names;
 
     /// Every registered integrator has its own colour and every parameterization its own marker.
     #[test]
     fn distinct_encodings() {
-        let cs: Vec<_> = registry::INTEGRATORS.iter().map(|i| colour(i)).collect();
+        let cs: Vec<_> = axis_names(Axis::Integrator)
+            .iter()
+            .take(INTEGRATOR_COLOURS.len())
+            .map(|i| colour(i))
+            .collect();
         for (i, a) in cs.iter().enumerate() {
             for b in &cs[i + 1..] {
                 assert_ne!(a, b);
             }
         }
-        let ms: Vec<_> = registry::PARAMS.iter().map(|p| marker(p)).collect();
+        let ms: Vec<_> = axis_names(Axis::Param)
+            .iter()
+            .take(PARAM_MARKERS.len())
+            .map(|p| marker(p))
+            .collect();
         for (i, a) in ms.iter().enumerate() {
             for b in &ms[i + 1..] {
                 assert_ne!(a, b);

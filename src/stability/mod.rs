@@ -225,23 +225,13 @@ pub fn run_study(
     Ok(summary)
 }
 
-/// The registry's report order of a variant.
-pub fn registry_order(param: &str, integrator: &str, formulation: &str) -> (usize, usize, usize) {
-    let pos =
-        |name: &str, list: &[&str]| list.iter().position(|x| *x == name).unwrap_or(usize::MAX);
-    (
-        pos(param, crate::registry::PARAMS),
-        pos(integrator, crate::registry::INTEGRATORS),
-        pos(formulation, crate::registry::FORMULATIONS),
-    )
-}
-
-/// A record's place in `stability.json`: case, scene, registry order, ladder value.
-fn record_order(r: &Record) -> (String, String, (usize, usize, usize), u64, u64) {
+/// A record's place in `stability.json`: case, scene, variant order, ladder value (fine
+/// steps first, unlike the summary's report order).
+fn record_order(r: &Record) -> (String, String, [usize; 3], u64, u64) {
     (
         r.case.clone(),
         r.scene.clone(),
-        registry_order(&r.param, &r.integrator, &r.formulation),
+        r.variant_order(),
         r.dt.map(f64::to_bits).unwrap_or(0),
         r.tol.map(f64::to_bits).unwrap_or(0),
     )

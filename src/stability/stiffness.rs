@@ -131,7 +131,7 @@ pub fn fits(records: &[Record], exps: &[i32]) -> Vec<FitRecord> {
             )
         })
         .collect();
-    keys.sort_by_key(|k| super::registry_order(k.0, k.1, k.2));
+    keys.sort_by_key(|k| crate::problem::variant_order(k.0, k.1, k.2));
     keys.dedup();
     let mut out = vec![];
     for (param, integ, form) in keys {
