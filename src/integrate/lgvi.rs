@@ -216,38 +216,7 @@ mod tests {
         assert!(st.newton_iters <= 8, "{}", st.newton_iters);
     }
 
-    /// Order 2 on a torque-free body with full inertia.
-    #[test]
-    fn order_two_torque_free_full_inertia() {
-        let (sys, x0) = ts::free_full();
-        let (e, p) = ts::observed_orders(Lgvi::new, &sys, &x0, 2.0, 50);
-        eprintln!("lgvi free_full: errors {e:?} orders {p:?}");
-        for pi in p {
-            assert!((pi - 2.0).abs() <= 0.2, "order {pi}");
-        }
-    }
-
-    /// Order 2 on a free body with three springs and gravity.
-    #[test]
-    fn order_two_three_springs_gravity() {
-        let (sys, x0) = ts::three_springs();
-        let (e, p) = ts::observed_orders(Lgvi::new, &sys, &x0, 1.0, 50);
-        eprintln!("lgvi three_springs: errors {e:?} orders {p:?}");
-        for pi in p {
-            assert!((pi - 2.0).abs() <= 0.2, "order {pi}");
-        }
-    }
-
-    /// Order 2 on the pinned heavy top.
-    #[test]
-    fn order_two_heavy_top() {
-        let (sys, x0) = ts::heavy_top();
-        let (e, p) = ts::observed_orders(Lgvi::new, &sys, &x0, 0.1, 100);
-        eprintln!("lgvi heavy_top: errors {e:?} orders {p:?}");
-        for pi in p {
-            assert!((pi - 2.0).abs() <= 0.2, "order {pi}");
-        }
-    }
+    ts::order_two_tests!("lgvi", Lgvi::new);
 
     /// On the torque-free gni rotor lgvi is the Moser-Veselov discrete rigid body, which keeps
     /// the kinetic energy exactly (measured at every step size tried, 0.01 to 0.3): over 1e5

@@ -264,40 +264,19 @@ mod tests {
         assert!(LieGenAlpha::new(1.5).is_none() && LieGenAlpha::new(f64::NAN).is_none());
     }
 
-    /// Order 2 on a torque-free body with full inertia (rho_inf = 0.9 and 0.5).
-    #[test]
-    fn order_two_torque_free_full_inertia() {
-        let (sys, x0) = ts::free_full();
-        for rho in [0.9, 0.5] {
-            let (e, p) = ts::observed_orders(|| LieGenAlpha::new(rho).unwrap(), &sys, &x0, 2.0, 50);
-            eprintln!("lie_gen_alpha({rho}) free_full: errors {e:?} orders {p:?}");
-            for pi in p {
-                assert!((pi - 2.0).abs() <= 0.2, "order {pi}");
-            }
-        }
-    }
+    ts::order_two_tests!("lie_gen_alpha(0.9)", LieGenAlpha::default);
 
-    /// Order 2 on a free body with three springs and gravity (rho_inf = 0.9 and 0.5).
+    /// Order 2 with rho_inf = 0.5 as well, on the torque-free body with full inertia and on the
+    /// body with three springs and gravity.
     #[test]
-    fn order_two_three_springs_gravity() {
-        let (sys, x0) = ts::three_springs();
-        for rho in [0.9, 0.5] {
-            let (e, p) = ts::observed_orders(|| LieGenAlpha::new(rho).unwrap(), &sys, &x0, 1.0, 50);
-            eprintln!("lie_gen_alpha({rho}) three_springs: errors {e:?} orders {p:?}");
-            for pi in p {
-                assert!((pi - 2.0).abs() <= 0.2, "order {pi}");
-            }
-        }
-    }
-
-    /// Order 2 on the pinned heavy top.
-    #[test]
-    fn order_two_heavy_top() {
-        let (sys, x0) = ts::heavy_top();
-        let (e, p) = ts::observed_orders(LieGenAlpha::default, &sys, &x0, 0.1, 100);
-        eprintln!("lie_gen_alpha heavy_top: errors {e:?} orders {p:?}");
-        for pi in p {
-            assert!((pi - 2.0).abs() <= 0.2, "order {pi}");
+    fn order_two_rho_inf_05() {
+        for problem in [
+            ts::OrderTwoProblem::FreeFull,
+            ts::OrderTwoProblem::ThreeSprings,
+        ] {
+            ts::assert_order_two("lie_gen_alpha(0.5)", problem, || {
+                LieGenAlpha::new(0.5).unwrap()
+            });
         }
     }
 

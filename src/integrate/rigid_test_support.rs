@@ -4,7 +4,8 @@
 //! springs with gravity), an independent reference integrator (classical RK4 in its
 //! Runge-Kutta-Munthe-Kaas form on SO(3) x R^3, Munthe-Kaas 1998: fourth order, so at 1/64 of
 //! the tested step its error is some 1e-7 of the tested method's), the fixed-step run loop
-//! the caller uses (step, then normalize), and the errors and invariants the tests measure.
+//! the caller uses (step, then normalize), the errors and invariants the tests measure, and
+//! the order-2 tests the second-order methods share (`order_two_tests!`).
 use nalgebra::{Matrix3, Vector3};
 
 use super::{Failure, FixedStep, Stats, System};
@@ -247,6 +248,76 @@ pub(crate) fn observed_orders<M: FixedStep<Sys>>(
     let p = [(e[0] / e[1]).log2(), (e[1] / e[2]).log2()];
     (e, p)
 }
+
+/// A problem of the order-2 tests, with the span and the coarsest step count of its ladder.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum OrderTwoProblem {
+    /// `free_full` over 2 s, 50 / 100 / 200 steps.
+    FreeFull,
+    /// `three_springs` over 1 s, 50 / 100 / 200 steps.
+    ThreeSprings,
+    /// `heavy_top` over 0.1 s, 100 / 200 / 400 steps.
+    HeavyTop,
+}
+
+/// Asserts that the method `make` builds (called `name` in the messages) is of order 2 on
+/// `problem`: both observed orders of its ladder (`observed_orders`) within 0.2 of 2.
+pub(crate) fn assert_order_two<M: FixedStep<Sys>>(
+    name: &str,
+    problem: OrderTwoProblem,
+    make: impl FnMut() -> M,
+) {
+    let (label, (sys, x0), t_end, n0) = match problem {
+        OrderTwoProblem::FreeFull => ("free_full", free_full(), 2.0, 50),
+        OrderTwoProblem::ThreeSprings => ("three_springs", three_springs(), 1.0, 50),
+        OrderTwoProblem::HeavyTop => ("heavy_top", heavy_top(), 0.1, 100),
+    };
+    let (e, p) = observed_orders(make, &sys, &x0, t_end, n0);
+    eprintln!("{name} {label}: errors {e:?} orders {p:?}");
+    for pi in p {
+        assert!((pi - 2.0).abs() <= 0.2, "{name} {label}: order {pi}");
+    }
+}
+
+/// The three order-2 tests of a second-order rigid-body method, one per `OrderTwoProblem`, so
+/// that a failure names the method's module and the problem. In the method's test module:
+/// `ts::order_two_tests!("lgvi", Lgvi::new);` (a name for the messages, a constructor).
+macro_rules! order_two_tests {
+    ($name:expr, $make:expr) => {
+        /// Order 2 (both observed orders within 0.2 of 2) on a torque-free body with full
+        /// inertia.
+        #[test]
+        fn order_two_torque_free_full_inertia() {
+            $crate::integrate::rigid_test_support::assert_order_two(
+                $name,
+                $crate::integrate::rigid_test_support::OrderTwoProblem::FreeFull,
+                $make,
+            );
+        }
+
+        /// Order 2 (both observed orders within 0.2 of 2) on a free body with three springs
+        /// and gravity.
+        #[test]
+        fn order_two_three_springs_gravity() {
+            $crate::integrate::rigid_test_support::assert_order_two(
+                $name,
+                $crate::integrate::rigid_test_support::OrderTwoProblem::ThreeSprings,
+                $make,
+            );
+        }
+
+        /// Order 2 (both observed orders within 0.2 of 2) on the pinned heavy top.
+        #[test]
+        fn order_two_heavy_top() {
+            $crate::integrate::rigid_test_support::assert_order_two(
+                $name,
+                $crate::integrate::rigid_test_support::OrderTwoProblem::HeavyTop,
+                $make,
+            );
+        }
+    };
+}
+pub(crate) use order_two_tests;
 
 /// `max |E - E0|` over the first and the last tenth of an `n`-step run.
 pub(crate) fn energy_error_tenths<M: FixedStep<Sys>>(

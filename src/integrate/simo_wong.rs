@@ -324,38 +324,7 @@ mod tests {
         }
     }
 
-    /// Order 2 on a torque-free body with full inertia.
-    #[test]
-    fn order_two_torque_free_full_inertia() {
-        let (sys, x0) = ts::free_full();
-        let (e, p) = ts::observed_orders(SimoWong::new, &sys, &x0, 2.0, 50);
-        eprintln!("simo_wong free_full: errors {e:?} orders {p:?}");
-        for pi in p {
-            assert!((pi - 2.0).abs() <= 0.2, "order {pi}");
-        }
-    }
-
-    /// Order 2 on a free body with three springs and gravity.
-    #[test]
-    fn order_two_three_springs_gravity() {
-        let (sys, x0) = ts::three_springs();
-        let (e, p) = ts::observed_orders(SimoWong::new, &sys, &x0, 1.0, 50);
-        eprintln!("simo_wong three_springs: errors {e:?} orders {p:?}");
-        for pi in p {
-            assert!((pi - 2.0).abs() <= 0.2, "order {pi}");
-        }
-    }
-
-    /// Order 2 on the pinned heavy top.
-    #[test]
-    fn order_two_heavy_top() {
-        let (sys, x0) = ts::heavy_top();
-        let (e, p) = ts::observed_orders(SimoWong::new, &sys, &x0, 0.1, 100);
-        eprintln!("simo_wong heavy_top: errors {e:?} orders {p:?}");
-        for pi in p {
-            assert!((pi - 2.0).abs() <= 0.2, "order {pi}");
-        }
-    }
+    ts::order_two_tests!("simo_wong", SimoWong::new);
 
     /// Max relative energy error and max |L - L0| over a run (and the stats).
     fn invariants(sys: &ts::Sys, x0: &ts::St, t_end: f64, n: usize) -> (f64, f64, Stats) {

@@ -223,38 +223,7 @@ mod tests {
     use super::*;
     use crate::integrate::rigid_test_support as ts;
 
-    /// The principal-axis composition is order 2 on a torque-free body with full inertia.
-    #[test]
-    fn order_two_torque_free_full_inertia() {
-        let (sys, x0) = ts::free_full();
-        let (e, p) = ts::observed_orders(Splitting::new, &sys, &x0, 2.0, 50);
-        eprintln!("splitting free_full: errors {e:?} orders {p:?}");
-        for pi in p {
-            assert!((pi - 2.0).abs() <= 0.2, "order {pi}");
-        }
-    }
-
-    /// Order 2 on a free body with three springs and gravity.
-    #[test]
-    fn order_two_three_springs_gravity() {
-        let (sys, x0) = ts::three_springs();
-        let (e, p) = ts::observed_orders(Splitting::new, &sys, &x0, 1.0, 50);
-        eprintln!("splitting three_springs: errors {e:?} orders {p:?}");
-        for pi in p {
-            assert!((pi - 2.0).abs() <= 0.2, "order {pi}");
-        }
-    }
-
-    /// Order 2 on the pinned heavy top (gravity torque about the pivot).
-    #[test]
-    fn order_two_heavy_top() {
-        let (sys, x0) = ts::heavy_top();
-        let (e, p) = ts::observed_orders(Splitting::new, &sys, &x0, 0.1, 100);
-        eprintln!("splitting heavy_top: errors {e:?} orders {p:?}");
-        for pi in p {
-            assert!((pi - 2.0).abs() <= 0.2, "order {pi}");
-        }
-    }
+    ts::order_two_tests!("splitting", Splitting::new);
 
     /// Symplectic: the energy error stays bounded over 1e5 steps on the gni free rotor (its
     /// maximum over the last tenth is at most twice that over the first tenth), and the world
