@@ -18,14 +18,22 @@ use crate::integrate::{Adaptive, Failure, FixedStep, Limits, Stats, System};
 use crate::model::rigid_body::Observation;
 
 /// What a run needs to observe of a state (chart-independent physical state, chart
-/// diagnostics).
+/// diagnostics). Each model family has its own observation (a rigid body's pose and twist,
+/// a chain's displacements and velocities).
 pub trait Observable: System {
+    /// The physical state, as the family scores it.
+    type Obs: Copy + std::fmt::Debug + Send + Sync;
     /// The physical state.
-    fn observe(&self, x: &Self::State) -> Observation;
+    fn observe(&self, x: &Self::State) -> Self::Obs;
     /// The chart's own constraint residual (None for minimal charts).
     fn residual(&self, x: &Self::State) -> Option<f64>;
     /// The model's energy of an observation.
-    fn energy(&self, o: &Observation) -> f64;
+    fn energy(&self, o: &Self::Obs) -> f64;
+    /// The attitude of an observation, for a `RotationWatch` (None: nothing to watch).
+    fn attitude(o: &Self::Obs) -> Option<nalgebra::UnitQuaternion<f64>> {
+        let _ = o;
+        None
+    }
 }
 
 /// Stability bounds checked at every observation of an `Observe::Steps` run: the run ends
@@ -56,7 +64,13 @@ pub struct RotationWatch {
 impl BoundWatch {
     /// The failure when the observation `s` at index `k` crosses a bound (energy relative to
     /// the initial energy `e0`, then rotation).
-    fn judge<S: Observable>(&self, sys: &S, e0: f64, k: u64, s: &Sample) -> Result<(), Failure> {
+    fn judge<S: Observable>(
+        &self,
+        sys: &S,
+        e0: f64,
+        k: u64,
+        s: &Sample<S::Obs>,
+    ) -> Result<(), Failure> {
         use crate::integrate::FailureKind::BoundExceeded;
         let d = (sys.energy(&s.obs) - e0).abs() / e0.abs().max(self.scale);
         if d.is_nan() || d >= self.max {
@@ -71,8 +85,9 @@ impl BoundWatch {
         }
         if let Some(rw) = &self.rotation
             && let Ok(i) = rw.reference.binary_search_by_key(&k, |(j, _)| *j)
+            && let Some(q) = S::attitude(&s.obs)
         {
-            let e = crate::math::so3::geodesic_quat(&s.obs.q, &rw.reference[i].1);
+            let e = crate::math::so3::geodesic_quat(&q, &rw.reference[i].1);
             if e.is_nan() || e >= rw.max {
                 return Err(Failure::new(
                     BoundExceeded,
@@ -122,17 +137,17 @@ pub struct Grid {
 
 /// One observation.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Sample {
+pub struct Sample<O = Observation> {
     pub t: f64,
-    pub obs: Observation,
+    pub obs: O,
     pub conditioning: f64,
     pub residual: Option<f64>,
 }
 
 /// The outcome of a run.
 #[derive(Debug, Clone)]
-pub struct RunOutput {
-    pub samples: Vec<Sample>,
+pub struct RunOutput<O = Observation> {
+    pub samples: Vec<Sample<O>>,
     /// Index stride of the score grid within `samples`.
     pub score_stride: usize,
     pub failure: Option<Failure>,
@@ -141,26 +156,16 @@ pub struct RunOutput {
     pub conditioning_min: f64,
 }
 
-impl RunOutput {
+impl<O> RunOutput<O> {
     /// The samples on the score grid (every `score_stride`-th).
-    pub fn scored(&self) -> impl Iterator<Item = &Sample> {
+    pub fn scored(&self) -> impl Iterator<Item = &Sample<O>> {
         self.samples.iter().step_by(self.score_stride.max(1))
     }
 }
 
-/// `Some(n)` when `h` divides `span` by the rule of spec/cases.md: `n = round(span/h)` and
-/// `|n h - span| <= 1e-9 span`.
-pub fn divides(span: f64, h: f64) -> Option<u64> {
-    if !(span > 0.0 && h > 0.0 && span.is_finite() && h.is_finite()) {
-        return None;
-    }
-    let n = (span / h).round();
-    if (1.0..1e15).contains(&n) && (n * h - span).abs() <= 1e-9 * span {
-        Some(n as u64)
-    } else {
-        None
-    }
-}
+/// `Some(n)` when `h` divides `span` by the case-file rule (`case::steps_dividing`: `n =
+/// round(span/h)`, `|n h - span| <= 1e-9 span`, `1 <= n <= 9e15`).
+pub use crate::case::steps_dividing as divides;
 
 /// Output grid for a run: `(output interval, number of outputs, outputs per score point)`.
 /// Uses the sample grid when `h` (if fixed) divides `sample_every`, else the score grid.
@@ -185,7 +190,7 @@ fn output_grid(grid: &Grid, h: Option<f64>) -> Result<(f64, u64, usize), String>
     }
 }
 
-fn sample<S: Observable>(sys: &S, t: f64, x: &S::State) -> Sample {
+fn sample<S: Observable>(sys: &S, t: f64, x: &S::State) -> Sample<S::Obs> {
     Sample {
         t,
         obs: sys.observe(x),
@@ -227,7 +232,7 @@ pub fn run_fixed<S: Observable, M: FixedStep<S>>(
     grid: &Grid,
     limits: &Limits,
     observe: &Observe,
-) -> Result<RunOutput, String> {
+) -> Result<RunOutput<S::Obs>, String> {
     let n_total = divides(grid.t_end, h_nominal)
         .ok_or_else(|| format!("step {h_nominal} does not divide t_end = {}", grid.t_end))?;
     if let Observe::Steps { n, at, watch } = observe {
@@ -305,7 +310,7 @@ fn fixed_step<S: Observable, M: FixedStep<S>>(
     k: u64,
     h: f64,
     limits: &Limits,
-    out: &mut RunOutput,
+    out: &mut RunOutput<S::Obs>,
 ) -> Result<(), Failure> {
     let r = method.step(sys, k as f64 * h, h, x, &mut out.stats);
     out.stats.steps += 1;
@@ -342,7 +347,7 @@ fn run_fixed_at<S: Observable, M: FixedStep<S>>(
     at: &[u64],
     watch: Option<&BoundWatch>,
     limits: &Limits,
-) -> Result<RunOutput, String> {
+) -> Result<RunOutput<S::Obs>, String> {
     let h = t_end / n_total as f64;
     let mut out = RunOutput {
         samples: Vec::with_capacity(at.len() + 2),
@@ -454,7 +459,7 @@ pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
     grid: &Grid,
     limits: &Limits,
     observe: &Observe,
-) -> Result<RunOutput, String> {
+) -> Result<RunOutput<S::Obs>, String> {
     let (dt_out, n_out, stride, at, watch) = match observe {
         Observe::Grid => {
             let (d, n, s) = output_grid(grid, None)?;

@@ -426,10 +426,7 @@ fn fit_orders(problems: &[Box<dyn Problem>], records: &[Record]) -> Vec<FitRecor
             .iter()
             .filter(|r| r.case == p.case() && r.scene == p.scene() && r.dt.is_some())
         {
-            groups
-                .entry(r.variant_order())
-                .or_default()
-                .push(r);
+            groups.entry(r.variant_order()).or_default().push(r);
         }
         for rs in groups.values() {
             let pts: Vec<(f64, Option<f64>)> = rs

@@ -201,6 +201,14 @@ fn steps_dividing_rule() {
     assert_eq!(steps_dividing(1.0, -0.1), None);
     assert_eq!(steps_dividing(1.0, f64::NAN), None);
     assert_eq!(steps_dividing(f64::INFINITY, 0.1), None);
+    // The step count is bounded by 9e15 (every integer up to it is exact in f64), one
+    // bound for case loading and the run loop (`run::divides` is this function).
+    assert_eq!(steps_dividing(9.0e15, 1.0), Some(9_000_000_000_000_000));
+    assert_eq!(steps_dividing(9.0e15 + 2.0, 1.0), None);
+    assert_eq!(
+        crate::run::divides(1.0e15, 1.0),
+        Some(1_000_000_000_000_000)
+    );
 }
 
 // An unknown key is named with its full path.

@@ -31,8 +31,8 @@ use std::ops::Range;
 
 use super::axes::AxisSpec;
 use super::data::VariantKey;
-use crate::problem::{Axis, axis_position};
 use super::style::{self, INK, Marker};
+use crate::problem::{Axis, axis_position};
 
 /// Total width of every plot (px).
 pub const WIDTH: u32 = 900;

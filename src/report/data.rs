@@ -22,7 +22,6 @@ pub struct VariantKey {
     pub formulation: String,
 }
 
-
 impl VariantKey {
     /// The variant of a record.
     pub fn of(r: &Record) -> Self {

@@ -450,6 +450,7 @@ impl RigidBody {
 }
 
 impl<C: PoseChart, F: Formulation> crate::run::Observable for RigidSystem<C, F> {
+    type Obs = Observation;
     fn observe(&self, s: &Self::State) -> Observation {
         RigidSystem::observe(self, s)
     }
@@ -458,5 +459,8 @@ impl<C: PoseChart, F: Formulation> crate::run::Observable for RigidSystem<C, F> 
     }
     fn energy(&self, o: &Observation) -> f64 {
         self.body.energy(o)
+    }
+    fn attitude(o: &Observation) -> Option<UnitQuaternion<f64>> {
+        Some(o.q)
     }
 }
