@@ -7,7 +7,8 @@ use crate::registry::Setup;
 use crate::run::Grid;
 use crate::suite::{Ladders, ScenePlan};
 
-fn ladders(l: &Ladder) -> Ladders {
+/// The ladder values of a scene's tier (steps per order class, tolerances).
+pub fn ladders(l: &Ladder) -> Ladders {
     let dts = |c: OrderClass| l.fixed(c).iter().map(|s| s.dt).collect::<Vec<_>>();
     Ladders {
         order1: dts(OrderClass::Order1),

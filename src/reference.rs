@@ -108,13 +108,67 @@ pub struct Loaded {
     pub file_sha256: String,
 }
 
-/// Loads and validates a reference; stale or malformed files are errors naming the file.
+/// What the shared loader needs of a family's stored reference file.
+pub trait Stored: serde::de::DeserializeOwned {
+    fn case(&self) -> &str;
+    fn scene(&self) -> &str;
+    fn inputs_sha256(&self) -> &str;
+    /// A message when the columns do not fit together (unequal or zero lengths).
+    fn check_columns(&self) -> Result<(), String>;
+}
+
+impl Stored for Reference {
+    fn case(&self) -> &str {
+        &self.case
+    }
+    fn scene(&self) -> &str {
+        &self.scene
+    }
+    fn inputs_sha256(&self) -> &str {
+        &self.inputs_sha256
+    }
+    fn check_columns(&self) -> Result<(), String> {
+        let n = self.t.len();
+        let lens = [
+            self.position.len(),
+            self.quaternion.len(),
+            self.velocity.len(),
+            self.omega_body.len(),
+            self.energy.len(),
+        ];
+        if n == 0 || lens.iter().any(|l| *l != n) {
+            return Err(format!(
+                "columns have unequal or zero lengths: t {n}, others {lens:?}"
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Loads and validates a rigid-body reference; stale or malformed files are errors naming
+/// the file.
 pub fn load(
     root: &Path,
     case: &str,
     scene: &str,
     inputs_sha256: &str,
 ) -> Result<Loaded, ReferenceError> {
+    let (reference, file_sha256) = load_as(root, case, scene, inputs_sha256)?;
+    Ok(Loaded {
+        reference,
+        file_sha256,
+    })
+}
+
+/// Loads and validates a family's reference file `references/<case>/<scene>.json`: readable,
+/// its columns consistent, its case and scene the expected ones, not stale; returns it with
+/// the SHA-256 of the file.
+pub fn load_as<R: Stored>(
+    root: &Path,
+    case: &str,
+    scene: &str,
+    inputs_sha256: &str,
+) -> Result<(R, String), ReferenceError> {
     let p = path(root, case, scene);
     let shown = p.display().to_string();
     let bytes = match std::fs::read(&p) {
@@ -133,47 +187,37 @@ pub fn load(
             });
         }
     };
-    let reference: Reference =
-        serde_json::from_slice(&bytes).map_err(|e| ReferenceError::Unreadable {
+    let reference: R = serde_json::from_slice(&bytes).map_err(|e| ReferenceError::Unreadable {
+        path: shown.clone(),
+        message: e.to_string(),
+    })?;
+    reference
+        .check_columns()
+        .map_err(|message| ReferenceError::Unreadable {
             path: shown.clone(),
-            message: e.to_string(),
+            message,
         })?;
-    let n = reference.t.len();
-    let lens = [
-        reference.position.len(),
-        reference.quaternion.len(),
-        reference.velocity.len(),
-        reference.omega_body.len(),
-        reference.energy.len(),
-    ];
-    if n == 0 || lens.iter().any(|l| *l != n) {
-        return Err(ReferenceError::Unreadable {
-            path: shown,
-            message: format!("columns have unequal or zero lengths: t {n}, others {lens:?}"),
-        });
-    }
-    if reference.case != case || reference.scene != scene {
+    if reference.case() != case || reference.scene() != scene {
         return Err(ReferenceError::Unreadable {
             path: shown,
             message: format!(
                 "key `case`/`scene` is {}/{}, expected {case}/{scene}",
-                reference.case, reference.scene
+                reference.case(),
+                reference.scene()
             ),
         });
     }
-    if reference.inputs_sha256 != inputs_sha256 {
+    if reference.inputs_sha256() != inputs_sha256 {
         return Err(ReferenceError::Stale {
             path: shown,
             case: case.into(),
             scene: scene.into(),
-            stored: reference.inputs_sha256.clone(),
+            stored: reference.inputs_sha256().to_string(),
             current: inputs_sha256.into(),
         });
     }
-    Ok(Loaded {
-        reference,
-        file_sha256: sha256_hex(&bytes),
-    })
+    let sha = sha256_hex(&bytes);
+    Ok((reference, sha))
 }
 
 /// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
@@ -190,7 +234,17 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 
 /// Writes a reference (pretty JSON, round-trip floats) atomically.
 pub fn save(root: &Path, r: &Reference) -> std::io::Result<PathBuf> {
-    let p = path(root, &r.case, &r.scene);
+    save_as(root, &r.case, &r.scene, r)
+}
+
+/// Writes any family's reference file (pretty JSON, round-trip floats) atomically.
+pub fn save_as<R: Serialize>(
+    root: &Path,
+    case: &str,
+    scene: &str,
+    r: &R,
+) -> std::io::Result<PathBuf> {
+    let p = path(root, case, scene);
     let text = serde_json::to_string_pretty(r).map_err(std::io::Error::other)?;
     write_atomic(&p, text.as_bytes())?;
     Ok(p)

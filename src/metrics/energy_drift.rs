@@ -13,7 +13,7 @@ pub fn energies(out: &RunOutput, body: &RigidBody) -> Vec<f64> {
 }
 
 /// Scores the drift given the score-grid energies.
-pub fn score(out: &RunOutput, energies: &[f64], energy_scale: f64, s: &mut Scores) {
+pub fn score<O>(out: &RunOutput<O>, energies: &[f64], energy_scale: f64, s: &mut Scores) {
     if let Some(f) = &out.failure {
         let why = format!("run failed ({:?}) at t = {}", f.kind, f.t);
         s.null("energy_drift_max", why.clone());

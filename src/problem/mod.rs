@@ -42,9 +42,9 @@ pub mod matrix;
 pub use crate::run::Stepping;
 pub use matrix::{Cell, Entry, matrix};
 
-/// The families, in report order. Adding a family is one line here plus its folder under
-/// `src/model/`.
-pub static FAMILIES: &[&Family] = &[&crate::model::rigid_body::family::FAMILY];
+/// The families, in report order. Adding a family is its folder under `src/model/` plus one
+/// line in `model::families!`.
+pub use crate::model::FAMILIES;
 
 /// The family a case belongs to (its `model` key, checked when the case was loaded).
 pub fn family_of(case: &Case) -> &'static Family {
