@@ -153,12 +153,14 @@ pub struct TrajectoryArgs {
     pub case: String,
     #[arg(long)]
     pub scene: String,
+    /// The parameterization (may be omitted when the case's family has only `none`).
     #[arg(long)]
-    pub param: String,
+    pub param: Option<String>,
     #[arg(long)]
     pub integrator: String,
-    #[arg(long, default_value = "body")]
-    pub formulation: String,
+    /// The formulation (default: the family's first, `body` for rigid bodies).
+    #[arg(long)]
+    pub formulation: Option<String>,
     #[arg(long, conflicts_with = "tol", required_unless_present = "tol")]
     pub dt: Option<f64>,
     #[arg(long)]
@@ -539,21 +541,34 @@ fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
     .find(|p| p.case() == a.case && p.scene() == a.scene)
     .ok_or_else(|| format!("--scene {}: not in case {}", a.scene, a.case))?;
     let family = p.family();
+    let param = match (&a.param, family.axes.params) {
+        (Some(x), _) => x.clone(),
+        (None, ["none"]) => "none".into(),
+        (None, _) => {
+            return Err(format!(
+                "give --param: the {} family has {}",
+                family.model,
+                family.axes.params.join(", ")
+            ));
+        }
+    };
+    let formulation = a
+        .formulation
+        .clone()
+        .unwrap_or_else(|| family.axes.formulations[0].to_string());
     let v = family
-        .find(&a.param, &a.integrator, &a.formulation)
+        .find(&param, &a.integrator, &formulation)
         .ok_or_else(|| {
             format!(
-                "{}/{}/{}: not a registered variant ({})",
-                a.param,
+                "{param}/{}/{formulation}: not a registered variant ({})",
                 a.integrator,
-                a.formulation,
-                (family.static_na_reason)(&a.param, &a.integrator, &a.formulation)
+                (family.static_na_reason)(&param, &a.integrator, &formulation)
             )
         })?;
     if let Some(r) = p.na_reason(v) {
         return Err(format!(
-            "{}/{}/{} is n/a here: {r}",
-            a.param, a.integrator, a.formulation
+            "{param}/{}/{formulation} is n/a here: {r}",
+            a.integrator
         ));
     }
     let stepping = match (a.dt, a.tol, v.info.adaptive) {
@@ -596,9 +611,9 @@ fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
     for (k, x) in [
         ("case", &a.case),
         ("scene", &a.scene),
-        ("param", &a.param),
+        ("param", &param),
         ("integrator", &a.integrator),
-        ("formulation", &a.formulation),
+        ("formulation", &formulation),
     ] {
         doc.insert(k.into(), x.as_str().into());
     }

@@ -34,11 +34,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::case::{self, Bound, Case, Gate};
-use crate::metrics;
-use crate::plan;
-use crate::reference;
-use crate::registry::{self, Variant};
-use crate::suite::ScenePlan;
+use crate::problem::{Problem, Variant};
 use crate::summary::{Record, Status, Summary};
 
 pub mod load;
@@ -95,13 +91,9 @@ pub const WORK_METRICS: &[&str] = &[
     "normalizations",
 ];
 
-/// The metric-name families a gate may name besides the names found in the records; a new
-/// family (the stability study's) is one more entry.
-pub const KNOWN_METRIC_LISTS: &[&[&str]] = &[
-    metrics::RIGID_METRICS,
-    WORK_METRICS,
-    crate::stability::search::METRICS,
-];
+/// The metric-name lists a gate may name besides the names found in the records and every
+/// model family's metrics (`problem::Family::metrics`); a new study is one more entry.
+pub const KNOWN_METRIC_LISTS: &[&[&str]] = &[WORK_METRICS, crate::stability::search::METRICS];
 
 /// Whether a metric belongs to a variant as a whole (the stability search's largest steps),
 /// not to a ladder point: its gates expand over scenes x variants only, and match the
@@ -254,7 +246,7 @@ fn short(hash: &str) -> &str {
 /// One gated run: a scene, a registered variant and a ladder value (None for a per-variant
 /// metric).
 struct Point<'p> {
-    plan: &'p ScenePlan,
+    problem: &'p dyn Problem,
     variant: &'static Variant,
     value: Option<f64>,
 }
@@ -263,7 +255,7 @@ fn expand<'p>(
     c: &Case,
     index: usize,
     g: &Gate,
-    plans: &'p [ScenePlan],
+    problems: &'p [Box<dyn Problem>],
     quick: bool,
 ) -> Result<Vec<Point<'p>>, GateError> {
     let f = &g.filter;
@@ -271,8 +263,9 @@ fn expand<'p>(
     let mut matching = 0usize;
     let mut ladders: BTreeSet<String> = BTreeSet::new();
     let mut na: BTreeSet<String> = BTreeSet::new();
-    for plan in plans.iter().filter(|p| keep(&f.scene, &p.scene)) {
-        for v in registry::variants() {
+    for problem in problems.iter().filter(|p| keep(&f.scene, p.scene())) {
+        let problem = &**problem;
+        for v in (problem.family().variants)() {
             let adaptive = v.info.adaptive;
             if !(keep(&f.param, v.param)
                 && keep(&f.integrator, v.integrator)
@@ -282,26 +275,32 @@ fn expand<'p>(
             {
                 continue;
             }
-            if let Some(why) = registry::scene_na_reason(v, &plan.setup.body) {
-                na.insert(format!("{v:?} is n/a on {}: {why}", plan.scene));
+            if let Some(why) = problem.na_reason(v) {
+                na.insert(format!(
+                    "{}/{}/{} is n/a on {}: {why}",
+                    v.param,
+                    v.integrator,
+                    v.formulation,
+                    problem.scene()
+                ));
                 continue;
             }
             matching += 1;
             if per_variant(&g.metric) {
                 points.push(Point {
-                    plan,
+                    problem,
                     variant: v,
                     value: None,
                 });
                 continue;
             }
-            let ladder = if quick { &plan.quick } else { &plan.ladders }.for_method(&v.info);
+            let ladder = problem.ladder(quick, &v.info);
             let wanted = if adaptive { &f.tol } else { &f.dt };
             ladders.extend(ladder.iter().map(|x| format!("{x:e}")));
             for &x in ladder {
                 if wanted.is_empty() || wanted.iter().any(|w| same_value(*w, x)) {
                     points.push(Point {
-                        plan,
+                        problem,
                         variant: v,
                         value: Some(x),
                     });
@@ -382,7 +381,7 @@ impl<'a> RecordIndex<'a> {
         let v = p.variant;
         let list = self.map.get(&(
             case,
-            p.plan.scene.as_str(),
+            p.problem.scene(),
             v.param,
             v.integrator,
             v.formulation,
@@ -403,20 +402,27 @@ impl<'a> RecordIndex<'a> {
     }
 }
 
-/// The SHA-256 of each scene's current reference file, or why it cannot be used.
+/// The SHA-256 of each scene's current reference file, or why it cannot be used (loaded
+/// once per scene, by a copy of the scene's problem).
 struct ReferenceHashes<'r> {
     root: &'r Path,
     cache: BTreeMap<(String, String), Result<String, String>>,
 }
 
 impl ReferenceHashes<'_> {
-    fn get(&mut self, plan: &ScenePlan) -> &Result<String, String> {
+    fn get(&mut self, c: &Case, problem: &dyn Problem) -> &Result<String, String> {
+        let root = self.root;
         self.cache
-            .entry((plan.case.clone(), plan.scene.clone()))
+            .entry((problem.case().to_string(), problem.scene().to_string()))
             .or_insert_with(|| {
-                reference::load(self.root, &plan.case, &plan.scene, &plan.inputs_sha256)
-                    .map(|l| l.file_sha256)
-                    .map_err(|e| e.to_string())
+                let scene = c
+                    .scene(problem.scene())
+                    .ok_or_else(|| format!("no scene {}", problem.scene()))?;
+                let mut p = (problem.family().compile)(c, scene).map_err(|e| e.to_string())?;
+                p.attach_reference(root)?;
+                p.reference_sha256()
+                    .map(str::to_string)
+                    .ok_or_else(|| "no reference".to_string())
             })
     }
 }
@@ -425,24 +431,23 @@ impl ReferenceHashes<'_> {
 /// its scene's quick ladder (a full run also has the points off it). The report evaluates the
 /// quick gates for such a summary: the full gates would ask for points it does not have.
 pub fn is_quick_summary(cases: &[Case], summary: &Summary) -> bool {
-    let Ok(plans) = plan::plans(cases, &[], &[]) else {
-        return false;
-    };
     let mut any = false;
     for r in &summary.records {
         let Some(value) = r.dt.or(r.tol) else {
             continue;
         };
-        let Some(p) = plans
+        let Some(s) = cases
             .iter()
-            .find(|p| p.case == r.case && p.scene == r.scene)
+            .find(|c| c.name == r.case)
+            .and_then(|c| c.scene(&r.scene))
         else {
             return false;
         };
-        let q = &p.quick;
-        let on_quick = [&q.order1, &q.order2_4, &q.order6, &q.tol]
+        let q = &s.quick;
+        let on_quick = [&q.order1, &q.order2_4, &q.order6]
             .iter()
-            .any(|l| l.contains(&value));
+            .any(|l| l.iter().any(|f| f.dt == value))
+            || q.tol.contains(&value);
         if !on_quick {
             return false;
         }
@@ -492,15 +497,16 @@ pub fn evaluate(
         if gated.is_empty() {
             continue;
         }
-        let plans = c
+        let family = crate::problem::family_of(c);
+        let problems = c
             .scenes
             .iter()
-            .map(|s| plan::scene_plan(c, s))
+            .map(|s| (family.compile)(c, s))
             .collect::<Result<Vec<_>, _>>()?;
         for (i, g) in gated {
-            for p in expand(c, i, g, &plans, opts.quick)? {
+            for p in expand(c, i, g, &problems, opts.quick)? {
                 let rec = index.find(&c.name, &p, &g.metric);
-                rows.push(judge(g, &p, rec, &mut refs, stability.is_some()));
+                rows.push(judge(c, g, &p, rec, &mut refs, stability.is_some()));
             }
         }
     }
@@ -520,6 +526,7 @@ pub fn evaluate(
 
 /// The row of one gated point.
 fn judge(
+    c: &Case,
     g: &Gate,
     p: &Point,
     rec: Option<&Record>,
@@ -528,8 +535,8 @@ fn judge(
 ) -> GateRow {
     let v = p.variant;
     let mut row = GateRow {
-        case: p.plan.case.clone(),
-        scene: p.plan.scene.clone(),
+        case: p.problem.case().to_string(),
+        scene: p.problem.scene().to_string(),
         param: v.param.into(),
         integrator: v.integrator.into(),
         formulation: v.formulation.into(),
@@ -554,18 +561,18 @@ fn judge(
     };
     let value = metric_value(r, &g.metric);
     row.value = value.flatten();
-    if r.inputs_sha256 != p.plan.inputs_sha256 {
+    if r.inputs_sha256 != p.problem.inputs_sha256() {
         row.note = format!(
             "stale: the record's inputs_sha256 {} is not the case's current {} (rerun)",
             short(&r.inputs_sha256),
-            short(&p.plan.inputs_sha256)
+            short(p.problem.inputs_sha256())
         );
         return row;
     }
     // A per-variant study record judged against an on-the-fly reference carries no stored
     // reference hash: only its physics hash can be stale.
     let no_stored_reference = p.value.is_none() && r.reference_sha256.is_none();
-    match refs.get(p.plan) {
+    match refs.get(c, p.problem) {
         _ if no_stored_reference => {}
         Err(e) => {
             row.note = format!("stale: {e}");
@@ -654,7 +661,7 @@ mod tests {
     #[test]
     fn quick_summary_is_recognised() {
         let cases = case::embedded().unwrap();
-        let plans = plan::plans(&cases, &[], &[]).unwrap();
+        let plans = crate::plan::plans(&cases, &[], &[]).unwrap();
         let p = plans
             .iter()
             .find(|p| p.case == "nine_spring" && p.scene == "two_angles")

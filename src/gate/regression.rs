@@ -4,9 +4,9 @@
 //! Two runs are the same when case, scene, param, integrator, formulation and `dt | tol` agree
 //! exactly (both summaries come from the same ladder literals). For each pair where both runs
 //! are `ok` it adds one row per compared quantity:
-//! - an error metric (`ERROR_METRICS`) regresses when `new > factor * old`; it is compared
+//! - an error metric (the family's `problem::Metric::reference_error` ones) regresses when `new > factor * old`; it is compared
 //!   only where both values lie above `FLOOR_CLAIMS` x the reference's accuracy claim
-//!   (`suite::claim_for`), since below that the error measures the reference, not the run;
+//!   (`Problem::accuracy_claim`), since below that the error measures the reference, not the run;
 //! - a work count (`WORK_COUNTS`: RHS evaluations, Newton iterations; deterministic) regresses
 //!   when `new > WORK_SLACK * old` (skipped when both are 0).
 //!
@@ -24,9 +24,9 @@ use std::path::Path;
 
 use super::load::{load_as, load_summary};
 use super::{GateError, GateRow, Verdict, failure_text, metric_value};
-use crate::case::{self, Case};
-use crate::reference::{self, Reference};
-use crate::suite::claim_for;
+use crate::case::Case;
+use crate::problem::Problem;
+use crate::reference;
 use crate::summary::{Record, Status, Summary};
 
 /// The default `--factor`.
@@ -36,12 +36,6 @@ pub const WORK_SLACK: f64 = 1.05;
 /// Errors are compared only above this multiple of the reference's accuracy claim.
 pub const FLOOR_CLAIMS: f64 = 100.0;
 /// The error metrics compared with the baseline.
-pub const ERROR_METRICS: [&str; 4] = [
-    "position_error_max",
-    "rotation_error_max",
-    "velocity_error_max",
-    "omega_error_max",
-];
 /// The work counts compared with the baseline.
 pub const WORK_COUNTS: [&str; 2] = ["rhs_evals", "newton_iters"];
 
@@ -139,7 +133,7 @@ pub fn compare_baseline(
         .filter(|r| r.status != Status::NotApplicable)
         .collect();
     now.sort_by_key(|r| r.report_order());
-    let mut claims: BTreeMap<(String, String), Result<Reference, String>> = BTreeMap::new();
+    let mut claims: BTreeMap<(String, String), Result<Box<dyn Problem>, String>> = BTreeMap::new();
     let mut stale: BTreeMap<(String, String), usize> = BTreeMap::new();
     let mut common = 0usize;
     let mut rows = vec![];
@@ -162,7 +156,7 @@ pub fn compare_baseline(
         if b.status != Status::Ok || r.status != Status::Ok {
             continue;
         }
-        let pairs: Vec<(&str, f64, f64)> = ERROR_METRICS
+        let pairs: Vec<(&str, f64, f64)> = error_metrics(cases, &r.case)
             .iter()
             .filter_map(|m| {
                 let old = metric_value(b, m).flatten()?;
@@ -176,7 +170,7 @@ pub fn compare_baseline(
                 .or_insert_with(|| load_reference(cases, references, &r.case, &r.scene));
             if let Ok(reference) = loaded {
                 for (m, old, new) in pairs {
-                    let floor = FLOOR_CLAIMS * claim_for(reference, m);
+                    let floor = FLOOR_CLAIMS * reference.accuracy_claim(m).unwrap_or(f64::INFINITY);
                     if !(old > floor && new > floor) {
                         continue;
                     }
@@ -243,13 +237,30 @@ pub fn compare_baseline(
     Ok(rows)
 }
 
-/// The current reference of a scene (loaded with the case's current physics hash).
+/// The reference errors of a case's family (none for a case not in the catalogue).
+fn error_metrics(cases: &[Case], case_name: &str) -> Vec<&'static str> {
+    cases
+        .iter()
+        .find(|c| c.name == case_name)
+        .map(|c| {
+            crate::problem::family_of(c)
+                .metrics
+                .iter()
+                .filter(|m| m.reference_error)
+                .map(|m| m.name)
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// The scene compiled with its current reference attached (loaded with the case's current
+/// physics hash): its accuracy claims.
 fn load_reference(
     cases: &[Case],
     root: &Path,
     case_name: &str,
     scene_name: &str,
-) -> Result<Reference, String> {
+) -> Result<Box<dyn Problem>, String> {
     let c = cases
         .iter()
         .find(|c| c.name == case_name)
@@ -257,9 +268,9 @@ fn load_reference(
     let s = c
         .scene(scene_name)
         .ok_or_else(|| format!("{}: no scene `{scene_name}`", c.file))?;
-    reference::load(root, case_name, scene_name, &case::inputs_sha256(c, s))
-        .map(|l| l.reference)
-        .map_err(|e| e.to_string())
+    let mut p = (crate::problem::family_of(c).compile)(c, s).map_err(|e| e.to_string())?;
+    p.attach_reference(root)?;
+    Ok(p)
 }
 
 #[cfg(test)]
@@ -292,7 +303,7 @@ mod tests {
             "two_angles",
         )
         .unwrap();
-        claim_for(&r, metric)
+        r.accuracy_claim(metric).unwrap()
     }
 
     fn rk4_at(s: &mut Summary, dt: f64) -> &mut Record {

@@ -7,16 +7,22 @@ use std::collections::BTreeSet;
 
 use super::{BOUND_REL_TOL, GateError, KNOWN_METRIC_LISTS, all_records, same_value};
 use crate::case::{self, Bound, Case, Gate, GateWhere, OrderClass};
-use crate::registry::{self, Variant};
+use crate::problem::Variant;
 use crate::summary::Summary;
 
-/// Metric names a gate may use: the static families and every name in the records.
+/// Metric names a gate may use: every family's metrics, the static lists and every name in
+/// the records.
 pub fn known_metrics(summary: &Summary, stability: Option<&Summary>) -> BTreeSet<String> {
     let mut known: BTreeSet<String> = KNOWN_METRIC_LISTS
         .iter()
         .flat_map(|l| l.iter())
         .map(|s| s.to_string())
         .collect();
+    known.extend(
+        crate::problem::FAMILIES
+            .iter()
+            .flat_map(|f| f.metrics.iter().map(|m| m.name.to_string())),
+    );
     for r in all_records(summary, stability) {
         known.extend(r.metrics.keys().cloned());
     }
@@ -69,7 +75,7 @@ pub(super) fn check_where_values(c: &Case, index: usize, g: &Gate) -> Result<(),
         key,
         message,
     };
-    let vs = registry::variants();
+    let vs = (crate::problem::family_of(c).variants)();
     let names = |pick: fn(&Variant) -> &'static str| {
         let mut n: Vec<&str> = vs.iter().map(pick).collect();
         n.sort_unstable();

@@ -29,16 +29,3 @@ impl Scores {
         self.values.get(name).copied().flatten()
     }
 }
-
-/// Every metric name the rigid-body cases can report (design.md).
-pub const RIGID_METRICS: &[&str] = &[
-    "position_error_max",
-    "rotation_error_max",
-    "velocity_error_max",
-    "omega_error_max",
-    "energy_drift_max",
-    "energy_drift_final",
-    "momentum_drift_max",
-    "constraint_error_max",
-    "conditioning_min",
-];

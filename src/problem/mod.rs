@@ -120,6 +120,9 @@ pub struct Axes {
 pub struct Metric {
     pub name: &'static str,
     pub unit: &'static str,
+    /// An error against the stored reference: order fits and baseline comparisons take the
+    /// reference's accuracy claim for it (`Problem::accuracy_claim`) as their floor.
+    pub reference_error: bool,
 }
 
 /// One named column of a family's trajectories and references: `width` numbers per sample.

@@ -29,38 +29,47 @@ pub const METRICS: &[Metric] = &[
     Metric {
         name: "position_error_max",
         unit: "m",
+        reference_error: true,
     },
     Metric {
         name: "rotation_error_max",
         unit: "rad",
+        reference_error: true,
     },
     Metric {
         name: "velocity_error_max",
         unit: "m/s",
+        reference_error: true,
     },
     Metric {
         name: "omega_error_max",
         unit: "rad/s",
+        reference_error: true,
     },
     Metric {
         name: "energy_drift_max",
         unit: "1",
+        reference_error: false,
     },
     Metric {
         name: "energy_drift_final",
         unit: "1",
+        reference_error: false,
     },
     Metric {
         name: "momentum_drift_max",
         unit: "1",
+        reference_error: false,
     },
     Metric {
         name: "constraint_error_max",
         unit: "1",
+        reference_error: false,
     },
     Metric {
         name: "conditioning_min",
         unit: "1",
+        reference_error: false,
     },
 ];
 
