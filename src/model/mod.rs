@@ -19,4 +19,6 @@ macro_rules! families {
 
 families! {
     rigid_body,
+    #[cfg(any(test, feature = "seam-test"))]
+    spring_chain,
 }
