@@ -408,7 +408,7 @@ fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
         return Err(format!("unknown variant name(s): {}", bad.join(", ")));
     }
     // Validates the case and scene names (an unknown one is bad input).
-    plan::plans(&cases, &a.filters.case, &a.filters.scene)?;
+    plan::select(&cases, &a.filters.case, &a.filters.scene)?;
     let opts = crate::stability::StudyOptions {
         quick: a.quick,
         jobs: jobs_or_default(a.jobs),

@@ -31,6 +31,10 @@
 //!
 //! Runs go in parallel (rayon, `opts.jobs` threads) and are deterministic: records, fits and
 //! series do not depend on `jobs`, only `wall_s` (one run, timed under that load) does.
+
+/// The model families this part applies to (the rigid body: it varies its charts, springs
+/// and initial state).
+pub const FAMILIES: &[&str] = &["rigid_body"];
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::sync::Arc;

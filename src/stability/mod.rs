@@ -16,7 +16,8 @@
 //! - `sensitivity`: the growth of a 1e-9 perturbation of each scene's initial state.
 //!
 //! Every part is deterministic: its records (all but `wall_s`, `created_utc`, `env`) do not
-//! depend on `--jobs`.
+//! depend on `--jobs`. Every part declares the model families it applies to (`FAMILIES` in
+//! its file; today all five are the rigid body's) and sees only the cases of those families.
 use std::path::PathBuf;
 
 use crate::summary::{FitRecord, Record};
@@ -180,6 +181,15 @@ pub fn run_study(
     filter: &crate::suite::VariantFilter,
     opts: &StudyOptions,
 ) -> Result<crate::summary::Summary, String> {
+    // Unknown names in the filters are bad input, whichever family they would select.
+    crate::plan::select(cases, case_filter, scene_filter)?;
+    // The parts below are the rigid body's (each file's FAMILIES).
+    let Some((cases, case_filter, scene_filter)) =
+        part_cases(cases, search::FAMILIES, case_filter, scene_filter)
+    else {
+        return write_study(Part::default(), opts);
+    };
+    let (cases, case_filter, scene_filter) = (&cases[..], &case_filter[..], &scene_filter[..]);
     let scenes = study_scenes(cases, case_filter, scene_filter, opts.quick)?;
     let tier_filter = if opts.quick {
         quick_filter(filter)
@@ -190,18 +200,62 @@ pub fn run_study(
     let wanted = |case: &str| case_filter.is_empty() || case_filter.iter().any(|c| c == case);
     if wanted(stiffness::CASE) && scene_filter.is_empty() {
         let done = all.records.clone();
-        all.extend(stiffness::study(cases, &tier_filter, opts, &done)?);
+        let cases = only(cases, stiffness::FAMILIES);
+        all.extend(stiffness::study(&cases, &tier_filter, opts, &done)?);
     }
     if scene_filter.is_empty() {
-        let kept: Vec<crate::case::Case> =
-            cases.iter().filter(|c| wanted(&c.name)).cloned().collect();
+        let kept: Vec<crate::case::Case> = only(cases, long_horizon::FAMILIES)
+            .into_iter()
+            .filter(|c| wanted(&c.name))
+            .collect();
         all.extend(long_horizon::study(&kept, filter, opts)?);
         if wanted(singularity::CASE) {
-            all.extend(singularity::study(cases, filter, opts)?);
+            all.extend(singularity::study(
+                &only(cases, singularity::FAMILIES),
+                filter,
+                opts,
+            )?);
         }
     }
-    let plans = crate::plan::plans(cases, case_filter, scene_filter)?;
-    all.extend(sensitivity::study(cases, &plans, opts)?);
+    let sensitive = only(cases, sensitivity::FAMILIES);
+    let plans = crate::plan::plans(&sensitive, case_filter, scene_filter)?;
+    all.extend(sensitivity::study(&sensitive, &plans, opts)?);
+    write_study(all, opts)
+}
+
+/// The cases of `families`.
+fn only(cases: &[crate::case::Case], families: &[&str]) -> Vec<crate::case::Case> {
+    cases
+        .iter()
+        .filter(|c| families.contains(&c.model))
+        .cloned()
+        .collect()
+}
+
+/// The cases of `families` in the selection, with the case and scene filters narrowed to
+/// them; None when the selection holds none of them.
+fn part_cases(
+    cases: &[crate::case::Case],
+    families: &[&str],
+    case_filter: &[String],
+    scene_filter: &[String],
+) -> Option<(Vec<crate::case::Case>, Vec<String>, Vec<String>)> {
+    let kept = only(cases, families);
+    let narrow = |f: &[String], known: &dyn Fn(&str) -> bool| -> Option<Vec<String>> {
+        let n: Vec<String> = f.iter().filter(|x| known(x)).cloned().collect();
+        (f.is_empty() || !n.is_empty()).then_some(n)
+    };
+    let case_filter = narrow(case_filter, &|x| kept.iter().any(|c| c.name == x))?;
+    let scene_filter = narrow(scene_filter, &|x| {
+        kept.iter()
+            .filter(|c| case_filter.is_empty() || case_filter.contains(&c.name))
+            .any(|c| c.scene(x).is_some())
+    })?;
+    (!kept.is_empty()).then_some((kept, case_filter, scene_filter))
+}
+
+/// Sorts the study's records, writes its series and `stability.json`; returns the summary.
+fn write_study(all: Part, opts: &StudyOptions) -> Result<crate::summary::Summary, String> {
     let mut records = all.records;
     records.sort_by_key(record_order);
     for (rel, value) in &all.series {

@@ -32,6 +32,10 @@
 //! What limits each result is in the record's `metric_reasons` under the metric's name (the
 //! failure kind or the bound crossed at the first failing step beyond it, with its time), or
 //! why the metric is null (nothing passed down to `MAX_STEPS`).
+
+/// The model families this part applies to (the rigid body: it varies its charts, springs
+/// and initial state).
+pub const FAMILIES: &[&str] = &["rigid_body"];
 use std::collections::BTreeMap;
 use std::sync::Arc;
 

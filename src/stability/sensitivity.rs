@@ -20,6 +20,10 @@
 //! Where it fails: `G` measures one trajectory's neighbourhood over one horizon, not a
 //! Lyapunov spectrum; the weights of the units are a choice (a scene measured in mm would
 //! differ); a growth at the integration error's level (G ~ 1e-2) is noise.
+
+/// The model families this part applies to (the rigid body: it varies its charts, springs
+/// and initial state).
+pub const FAMILIES: &[&str] = &["rigid_body"];
 use std::collections::BTreeMap;
 
 use nalgebra::{SMatrix, SVector, Vector3};

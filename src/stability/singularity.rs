@@ -15,6 +15,10 @@
 //! The runs: `rk4` at `dt = 1e-2` and `1e-3` and `dop853` at tolerances `1e-4` and `1e-8`, every
 //! chart of the body formulation (the quick tier: three distances, the Euler charts, `quat_proj`
 //! and `so3`, `rk4` at 1e-2 and `dop853` at 1e-8).
+
+/// The model families this part applies to (the rigid body: it varies its charts, springs
+/// and initial state).
+pub const FAMILIES: &[&str] = &["rigid_body"];
 use std::collections::BTreeMap;
 
 use nalgebra::Vector3;

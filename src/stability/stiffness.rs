@@ -14,6 +14,10 @@
 //! Slopes are fitted (`metrics::order::loglog_slope`) over the factors where the search found a
 //! step that is neither capped (`t_h / 20` passed: no stability limit to measure) nor null;
 //! fewer than three such points give `order: null` with the reason.
+
+/// The model families this part applies to (the rigid body: it varies its charts, springs
+/// and initial state).
+pub const FAMILIES: &[&str] = &["rigid_body"];
 use super::search::{self, StudyScene};
 use super::{Part, StudyOptions, narrowed, step_search};
 use crate::case::Case;

@@ -57,7 +57,10 @@ fn exact_solution_solves_the_equations() {
         );
         let xdd = (a.x - 2.0 * b.x + c.x) / (h * h);
         let rhs = -(chain.minv_k * b.x);
-        assert!((xdd - rhs).amax() <= 1e-5 * rhs.amax().max(1.0), "{xdd} vs {rhs}");
+        assert!(
+            (xdd - rhs).amax() <= 1e-5 * rhs.amax().max(1.0),
+            "{xdd} vs {rhs}"
+        );
         assert!((chain.energy(&b) - e0).abs() <= 1e-13 * e0);
     }
     // At t = 0 the modal round trip x = Phi Phi^T M x0 returns x0 to round-off.
@@ -67,7 +70,8 @@ fn exact_solution_solves_the_equations() {
 /// Every command of the suite runs the family end to end: the matrix lists its six variants,
 /// the stored references pass their check, the full run converges at the methods' orders
 /// (rk4 4, Stormer-Verlet 2), the trajectory carries the family's columns without `--param`,
-/// the report has the case, and the gates pass.
+/// the stability study (the rigid body's parts) leaves it alone, the report has the case, and
+/// the gates pass.
 #[test]
 fn end_to_end_through_the_command_line() {
     let out = temp("e2e");
@@ -117,6 +121,12 @@ fn end_to_end_through_the_command_line() {
     assert_eq!(doc["t"].as_array().unwrap().len(), 201);
     assert_eq!(doc["displacement"][0].as_array().unwrap().len(), 3);
     assert_eq!(doc["energy"].as_array().unwrap().len(), 201);
+    // The stability study's parts are the rigid body's: nothing of this family runs there.
+    assert_eq!(cli(&["stability", "--quick", "--out", &o]), 0);
+    let st: Summary =
+        serde_json::from_str(&std::fs::read_to_string(out.join("stability.json")).unwrap())
+            .unwrap();
+    assert!(st.records.is_empty() && st.fits.is_empty());
     let summary = out.join("summary.json").display().to_string();
     assert_eq!(cli(&["report", "--summary", &summary]), 0);
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
@@ -145,7 +155,12 @@ fn visible_files(dir: &Path, out: &mut Vec<PathBuf>) {
 /// line in the family table (`src/model/mod.rs`) and its fixtures under `tests/fixtures/`.
 #[test]
 fn no_file_outside_the_folder_names_the_family() {
-    let names = ["spring_chain", "stormer_verlet", "chain_nodal", "chain_modal"];
+    let names = [
+        "spring_chain",
+        "stormer_verlet",
+        "chain_nodal",
+        "chain_modal",
+    ];
     let r = root();
     let mut files = vec![];
     for d in ["src", "tests", "benches", "cases", "references", ".ci"] {
