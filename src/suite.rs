@@ -330,19 +330,30 @@ pub fn run_catalogue(
             .collect()
     });
     progress.finish();
-    // The timing pass, after the results pass: runs without observation.
+    // The timing pass, after the results pass: runs without observation, one job per
+    // worker at a time (one rayon task per job, longest first: `jobs` is sorted), or on this
+    // thread alone with `--serial-timing`. Two runs on two cores slow each other by about 1 %
+    // (measured, README "Benchmarks").
     if opts.repeats > 0 {
         let timing = Progress::new(total, "timing", opts.progress);
-        for (job, d) in jobs.iter().zip(done.iter_mut()) {
+        let time_one = |job: &Job, d: &mut Done| {
             if d.series.is_some() {
-                d.record.wall_s = time_run(
-                    &*problems[job.problem],
-                    job.variant,
-                    job.value,
-                    opts.repeats,
-                );
+                let p = &*problems[job.problem];
+                d.record.wall_s = time_run(p, job.variant, job.value, opts.repeats);
             }
             timing.tick();
+        };
+        if opts.serial_timing {
+            for (job, d) in jobs.iter().zip(done.iter_mut()) {
+                time_one(job, d);
+            }
+        } else {
+            pool.install(|| {
+                jobs.par_iter()
+                    .zip(done.par_iter_mut())
+                    .with_max_len(1)
+                    .for_each(|(job, d)| time_one(job, d));
+            });
         }
         timing.finish();
     }
