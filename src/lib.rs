@@ -1,30 +1,25 @@
 //! mbdbench: a benchmark and verification suite for the numerics of multibody dynamics.
 //!
-//! Canonical problems (`cases/*.toml`) run with every rotation parameterization
-//! ([`rotation`]) and time integrator ([`integrate`]) that applies ([`registry`]), scored
-//! against stored, cross-checked references ([`reference`], [`refgen`]) on accuracy, energy
-//! drift, constraint error and cost ([`metrics`], [`score`]). The binary `mbdbench` wraps
-//! this in a command line ([`cli`]). Running one case with one variant:
+//! Canonical problems (`cases/*.toml`, [`case`]) of several model families ([`model`], each
+//! plugged in by one line of the family table, [`problem::FAMILIES`]) run with every rotation
+//! parameterization ([`rotation`]), formulation and time integrator ([`integrate`]) that
+//! applies, scored against stored, cross-checked references ([`reference`], [`refgen`]) on
+//! accuracy, energy drift, constraint error and cost ([`metrics`], [`score`]). The binary
+//! `mbdbench` wraps this in a command line ([`cli`]). Running one case with one variant,
+//! through the seam every family implements ([`problem::Problem`]):
 //!
 //! ```
-//! use mbdbench::{case, plan, reference, registry, score};
+//! use mbdbench::problem::{self, Stepping, Want};
 //!
-//! let cases = case::embedded().unwrap();
+//! let cases = mbdbench::case::embedded().unwrap();
 //! let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
-//! let p = plan::scene_plan(c, c.scene("two_angles").unwrap()).unwrap();
-//! let v = registry::find("so3", "rk4", "body").unwrap();
-//! let out = (v.run)(&p.setup, 1.0e-2).unwrap();
+//! let family = problem::family_of(c);
+//! let mut p = (family.compile)(c, c.scene("two_angles").unwrap()).unwrap();
+//! p.attach_reference(&mbdbench::cli::default_references()).unwrap();
+//! let v = family.find("so3", "rk4", "body").unwrap();
+//! let out = p.run(v, Stepping::Dt(1.0e-2), Want::Scored).unwrap();
 //! assert!(out.failure.is_none());
-//! let refs = mbdbench::cli::default_references();
-//! let r = reference::load(&refs, "nine_spring", "two_angles", &p.inputs_sha256).unwrap();
-//! let cx = score::ScoreContext {
-//!     body: &p.setup.body,
-//!     energy_scale: p.energy_scale,
-//!     primary_metric: &p.primary_metric,
-//!     reference: Some(&r.reference),
-//! };
-//! let (scores, _series) = score::score(&out, &cx);
-//! let err = scores.get("rotation_error_max").unwrap();
+//! let err = out.scores.get("rotation_error_max").unwrap();
 //! assert!(err < 1e-5 && err > 1e-8, "RKMK4 at 1e-2 s: {err:e}");
 //! ```
 pub mod baseline;

@@ -128,21 +128,27 @@ impl Stored for Reference {
         &self.inputs_sha256
     }
     fn check_columns(&self) -> Result<(), String> {
-        let n = self.t.len();
-        let lens = [
-            self.position.len(),
-            self.quaternion.len(),
-            self.velocity.len(),
-            self.omega_body.len(),
-            self.energy.len(),
-        ];
-        if n == 0 || lens.iter().any(|l| *l != n) {
-            return Err(format!(
-                "columns have unequal or zero lengths: t {n}, others {lens:?}"
-            ));
-        }
-        Ok(())
+        columns_fit(
+            self.t.len(),
+            &[
+                self.position.len(),
+                self.quaternion.len(),
+                self.velocity.len(),
+                self.omega_body.len(),
+                self.energy.len(),
+            ],
+        )
     }
+}
+
+/// Every column as long as `t`, and `t` not empty.
+pub fn columns_fit(n: usize, lens: &[usize]) -> Result<(), String> {
+    if n == 0 || lens.iter().any(|l| *l != n) {
+        return Err(format!(
+            "columns have unequal or zero lengths: t {n}, others {lens:?}"
+        ));
+    }
+    Ok(())
 }
 
 /// Loads and validates a rigid-body reference; stale or malformed files are errors naming

@@ -85,14 +85,10 @@ impl Stored for ChainReference {
         &self.inputs_sha256
     }
     fn check_columns(&self) -> Result<(), String> {
-        let n = self.t.len();
-        let lens = [self.displacement.len(), self.velocity.len(), self.energy.len()];
-        if n == 0 || lens.iter().any(|l| *l != n) {
-            return Err(format!(
-                "columns have unequal or zero lengths: t {n}, others {lens:?}"
-            ));
-        }
-        Ok(())
+        reference::columns_fit(
+            self.t.len(),
+            &[self.displacement.len(), self.velocity.len(), self.energy.len()],
+        )
     }
 }
 
