@@ -18,6 +18,27 @@ use crate::math::so3;
 use crate::math::vector::Vector;
 
 /// A parameterization of a rigid body's pose.
+///
+/// # Example
+///
+/// The Lie-group chart `so3`: a body-frame increment (rotation, then translation) retracts as
+/// `R exp(w)`, `x + v`; the stored unit quaternion satisfies its constraint to round-off, and
+/// the chart has no singular set.
+///
+/// ```
+/// use mbdbench::rotation::{PoseChart, So3};
+/// use nalgebra::{UnitQuaternion, Vector3, Vector6};
+///
+/// let r = UnitQuaternion::from_scaled_axis(Vector3::new(0.3, -0.2, 0.1));
+/// let c = So3::from_pose(r.to_rotation_matrix().matrix(), &Vector3::new(1.0, 2.0, 3.0));
+/// let d = Vector6::new(0.0, 0.0, 0.5, 0.1, 0.0, 0.0);
+/// let c1 = So3::retract(&c, &d, false);
+/// let want = r * UnitQuaternion::from_scaled_axis(Vector3::new(0.0, 0.0, 0.5));
+/// assert!(So3::quaternion(&c1).angle_to(&want) < 1e-14);
+/// assert_eq!(So3::position(&c1), Vector3::new(1.1, 2.0, 3.0));
+/// assert!(So3::residual(&c1).unwrap() < 1e-15);
+/// assert_eq!(So3::conditioning(&c1), 1.0);
+/// ```
 pub trait PoseChart: Send + Sync + 'static {
     /// The variant name (design.md, "Variant names").
     const NAME: &'static str;
