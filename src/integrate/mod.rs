@@ -26,6 +26,7 @@ pub mod implicit_rk;
 pub mod lgvi;
 pub mod lie_gen_alpha;
 pub mod linalg;
+pub mod lu6;
 mod newton_stop;
 mod own_state;
 #[cfg(test)]

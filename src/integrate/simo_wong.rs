@@ -45,6 +45,7 @@
 //! (`|Theta| -> infinity` is a half turn) or the forces are too stiff for the step.
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 
+use super::lu6::Lu6;
 use super::newton_stop::{NewtonStop, relative, update_norm};
 use super::own_state::So3State;
 use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats};
@@ -221,7 +222,7 @@ impl FixedStep<RigidSystem<So3, Body>> for SimoWong {
 
         let mut g = d.residual(&z);
         stats.rhs_evals += 1;
-        let mut lu = d.jacobian(&z, &g, stats).lu();
+        let mut lu = Lu6::new(d.jacobian(&z, &g, stats));
         let mut stop = NewtonStop::new();
         let mut prev = f64::INFINITY;
         loop {
@@ -250,7 +251,7 @@ impl FixedStep<RigidSystem<So3, Body>> for SimoWong {
             g = d.residual(&z);
             stats.rhs_evals += 1;
             if rel > 0.25 * prev {
-                lu = d.jacobian(&z, &g, stats).lu();
+                lu = Lu6::new(d.jacobian(&z, &g, stats));
             }
             prev = rel;
         }
