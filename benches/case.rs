@@ -1,32 +1,36 @@
-//! Whole-run cost per registered variant at its coarsest ladder step (or loosest tolerance),
-//! one scene per case (the first): what the cheapest point of the work-precision diagram
-//! costs, observation included (the suite's own timing pass runs without observation).
+//! Whole-run cost per registered variant of every family at its coarsest ladder step (or
+//! loosest tolerance), one scene per case (the first), through the `Problem` seam: what the
+//! cheapest point of the work-precision diagram costs, scoring against the stored reference
+//! included (`Want::Scored`, as the suite's results pass; its timing pass runs `Want::Timing`).
 use criterion::{BenchmarkId, Criterion, criterion_group};
 use mbdbench::case;
-use mbdbench::plan;
-use mbdbench::registry;
+use mbdbench::problem::{self, Want};
 use std::hint::black_box;
 use std::time::Duration;
 
 fn whole_runs(c: &mut Criterion) {
     let cases = case::embedded().expect("embedded cases load");
+    let references = mbdbench::cli::default_references();
     for k in &cases {
         let scene = &k.scenes[0];
-        let p = plan::scene_plan(k, scene).expect("plan");
+        let family = problem::family_of(k);
+        let mut p = (family.compile)(k, scene).expect("compile");
+        p.attach_reference(&references).expect("stored reference");
         let mut g = c.benchmark_group(format!("case/{}/{}", k.name, scene.name));
         g.sample_size(10)
             .warm_up_time(Duration::from_millis(200))
             .measurement_time(Duration::from_millis(500));
-        for v in registry::variants() {
-            if registry::scene_na_reason(v, &p.setup.body).is_some() {
+        for v in problem::matrix::registered(family) {
+            if p.na_reason(v).is_some() {
                 continue;
             }
-            let Some(&value) = p.ladders.for_method(&v.info).first() else {
+            let Some(&value) = p.ladder(false, &v.info).first() else {
                 continue;
             };
             let id = format!("{}/{}/{}", v.param, v.integrator, v.formulation);
-            g.bench_with_input(BenchmarkId::new(id, value), &value, |b, &value| {
-                b.iter(|| black_box((v.run)(black_box(&p.setup), value)))
+            let stepping = v.stepping(value);
+            g.bench_with_input(BenchmarkId::new(id, value), &value, |b, _| {
+                b.iter(|| black_box(p.run(v, stepping, Want::Scored)))
             });
         }
         g.finish();

@@ -1,19 +1,34 @@
-//! ns/step of every registered variant, per case, next to a hand-written fixed-size RK4 loop
-//! of the nine-spring model (`mbdbench::baseline`). Criterion's
+//! ns/step of every registered variant of every family, per case, run through the `Problem`
+//! seam as the suite times it, next to a hand-written fixed-size RK4 loop
+//! of the nine-spring model (`mbdbench::model::rigid_body::baseline`). Criterion's
 //! throughput is set to the run's step count, so "elem/s" reads as steps per second and the
 //! time per element as ns/step. After the benches, a table of ns/step and the ratio of
 //! `quat/rk4/body` to the hand loop is printed (target: at most 1.5x).
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group};
-use mbdbench::baseline;
 use mbdbench::case;
-use mbdbench::plan;
-use mbdbench::registry::{self, Setup};
-use mbdbench::run::Grid;
+use mbdbench::model::rigid_body::baseline;
+use mbdbench::model::rigid_body::plan;
+use mbdbench::model::rigid_body::registry::Setup;
+use mbdbench::problem::{self, Want};
 use std::hint::black_box;
 use std::time::Instant;
 
 const T_END: f64 = 1.0;
 
+/// The scene of the hand-written loop and the table: nine_spring/large.
+fn nine_spring_large() -> (&'static problem::Family, Box<dyn problem::Problem>) {
+    let cases = case::embedded().expect("embedded cases load");
+    let c = cases
+        .iter()
+        .find(|c| c.name == "nine_spring")
+        .expect("nine_spring");
+    let family = problem::family_of(c);
+    let p = (family.compile)(c, c.scene("large").expect("scene large")).expect("compile");
+    (family, p)
+}
+
+/// The rigid body and initial state of nine_spring/large for the hand-written loop (the one
+/// part of this bench that is the rigid family's own: the loop is written for it).
 fn setup() -> Setup {
     let cases = case::embedded().expect("embedded cases load");
     let c = cases
@@ -21,17 +36,11 @@ fn setup() -> Setup {
         .find(|c| c.name == "nine_spring")
         .expect("nine_spring");
     let s = c.scene("large").expect("scene large");
-    let mut p = plan::scene_plan(c, s).expect("plan");
-    p.setup.grid = Grid {
-        t_end: T_END,
-        sample_every: 0.1,
-        score_every: 0.1,
-    };
-    p.setup
+    plan::scene_plan(c, s).expect("plan").setup
 }
 
-/// The step (or tolerance) each variant is benchmarked at.
-fn value(v: &registry::Variant) -> f64 {
+/// The step (or tolerance) each variant is tabulated at.
+fn value(v: &problem::Variant) -> f64 {
     if v.info.adaptive { 1e-8 } else { 1e-3 }
 }
 
@@ -52,8 +61,10 @@ fn baseline_run(setup: &Setup, n: usize) -> baseline::Y {
     y
 }
 
-/// ns/step of every registered variant on the first scene of every case, over 1000 steps of
-/// the variant's coarsest ladder step (adaptive: tolerance 1e-8, per accepted step).
+/// ns/step of every registered variant of every family on the first scene of every case,
+/// through the `Problem` seam as the suite's timing pass runs it (`Want::Timing`: final state
+/// only), over 1000 steps of the variant's coarsest ladder step (adaptive: tolerance 1e-8
+/// over ten score intervals, per accepted step).
 fn bench_steps(c: &mut Criterion) {
     let setup = setup();
     let n = (T_END / 1e-3).round() as usize;
@@ -66,39 +77,35 @@ fn bench_steps(c: &mut Criterion) {
     g.finish();
     let cases = case::embedded().expect("embedded cases load");
     for k in &cases {
-        let scene = &k.scenes[0];
-        let p = plan::scene_plan(k, scene).expect("plan");
+        let family = problem::family_of(k);
+        let mut p = (family.compile)(k, &k.scenes[0]).expect("compile");
         let mut g = c.benchmark_group(format!("step/{}", k.name));
         g.sample_size(10)
             .warm_up_time(std::time::Duration::from_millis(200))
             .measurement_time(std::time::Duration::from_millis(500));
-        for v in registry::variants() {
-            if registry::scene_na_reason(v, &p.setup.body).is_some() {
+        for v in problem::matrix::registered(family) {
+            if p.na_reason(v).is_some() {
                 continue;
             }
             let (val, t_end) = if v.info.adaptive {
-                (1e-8, p.setup.grid.score_every * 10.0)
+                (1e-8, p.score_every() * 10.0)
             } else {
-                match p.ladders.for_method(&v.info).first() {
+                match p.ladder(false, &v.info).first() {
                     Some(&h) => (h, h * 1000.0),
                     None => continue,
                 }
             };
-            let mut s = p.setup.clone();
-            s.observe = mbdbench::run::Observe::Final;
-            s.grid = Grid {
-                t_end,
-                sample_every: t_end,
-                score_every: t_end,
-            };
-            let steps = match (v.run)(&s, val) {
+            p.set_t_end(t_end);
+            let stepping = v.stepping(val);
+            let steps = match p.run(v, stepping, Want::Timing) {
                 Ok(o) if o.failure.is_none() => o.stats.steps.max(1),
                 _ => continue,
             };
             g.throughput(Throughput::Elements(steps));
             let id = format!("{}/{}/{}", v.param, v.integrator, v.formulation);
-            g.bench_with_input(BenchmarkId::from_parameter(id), &val, |b, &val| {
-                b.iter(|| black_box((v.run)(black_box(&s), val)))
+            let p = &*p;
+            g.bench_function(BenchmarkId::from_parameter(id), |b| {
+                b.iter(|| black_box(p.run(v, stepping, Want::Timing)))
             });
         }
         g.finish();
@@ -132,13 +139,15 @@ fn table(_: &mut Criterion) {
         },
         reps,
     );
+    let (family, mut p) = nine_spring_large();
+    p.set_t_end(T_END);
     println!("\nns/step on nine_spring/large (median of {reps}):");
     println!("  {:<40} {:>10.1}", "hand_written_rk4_quat", base);
     let mut quat_rk4 = None;
-    for v in registry::variants() {
-        let val = value(v);
+    for v in problem::matrix::registered(family) {
+        let stepping = v.stepping(value(v));
         let ns = ns_per_step(
-            || match (v.run)(&setup, val) {
+            || match p.run(v, stepping, Want::Timing) {
                 Ok(o) => o.stats.steps.max(1),
                 Err(_) => 1,
             },

@@ -22,7 +22,6 @@
 //! let err = out.scores.get("rotation_error_max").unwrap();
 //! assert!(err < 1e-5 && err > 1e-8, "RKMK4 at 1e-2 s: {err:e}");
 //! ```
-pub mod baseline;
 pub mod case;
 pub mod cli;
 pub mod gate;
@@ -33,12 +32,9 @@ pub mod model;
 pub mod plan;
 pub mod problem;
 pub mod reference;
-pub mod refgen;
-pub mod registry;
 pub mod report;
 pub mod rotation;
 pub mod run;
-pub mod score;
 pub mod stability;
 pub mod suite;
 pub mod summary;

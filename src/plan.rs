@@ -1,11 +1,7 @@
 //! From validated case files to the suite's scene plans: the compiled model, the initial
 //! state, the grid, the work limits, the ladders and the physics hash of each scene.
-use crate::case::{self, Case, Ladder, OrderClass, Scene};
-use crate::integrate::Limits;
-use crate::model::rigid_body::case as rigid_case;
-use crate::registry::Setup;
-use crate::run::Grid;
-use crate::suite::{Ladders, ScenePlan};
+use crate::case::{Case, Ladder, OrderClass, Scene};
+use crate::suite::Ladders;
 
 /// The ladder values of a scene's tier (steps per order class, tolerances).
 pub fn ladders(l: &Ladder) -> Ladders {
@@ -16,42 +12,6 @@ pub fn ladders(l: &Ladder) -> Ladders {
         order6: dts(OrderClass::Order6),
         tol: l.tol.clone(),
     }
-}
-
-/// The plan of one scene.
-pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
-    let body = rigid_case::rigid_body(c, s)?;
-    let initial = rigid_case::RigidScene::of(s)
-        .map(rigid_case::initial)
-        .ok_or_else(|| case::CaseError {
-            file: c.file.clone(),
-            key: format!("scene[{}]", s.index),
-            message: "not a rigid-body scene".into(),
-        })?;
-    let limits = Limits {
-        max_steps: c.max_steps,
-        max_rhs_evals: c.max_rhs_evals.unwrap_or(Limits::default().max_rhs_evals),
-    };
-    Ok(ScenePlan {
-        case: c.name.clone(),
-        scene: s.name.clone(),
-        setup: Setup {
-            body,
-            initial,
-            grid: Grid {
-                t_end: s.t_end,
-                sample_every: s.sample_every,
-                score_every: s.score_every,
-            },
-            limits,
-            observe: crate::run::Observe::Grid,
-        },
-        energy_scale: c.energy_scale,
-        primary_metric: c.primary_metric.clone(),
-        inputs_sha256: case::inputs_sha256(c, s),
-        ladders: ladders(s.ladder(false)),
-        quick: ladders(s.ladder(true)),
-    })
 }
 
 /// The selected cases and scenes (empty filter lists select all), in file order. A name in
@@ -91,19 +51,6 @@ pub fn select<'c>(
         }
     }
     Ok(out)
-}
-
-/// The plans of the selected cases and scenes (empty filter lists select all). A name in a
-/// filter that matches nothing is an error.
-pub fn plans(
-    cases: &[Case],
-    case_filter: &[String],
-    scene_filter: &[String],
-) -> Result<Vec<ScenePlan>, String> {
-    select(cases, case_filter, scene_filter)?
-        .into_iter()
-        .map(|(c, s)| scene_plan(c, s).map_err(|e| e.to_string()))
-        .collect()
 }
 
 /// The compiled problems of the selected cases and scenes, each by its case's family.

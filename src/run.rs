@@ -603,10 +603,11 @@ mod tests {
     fn over_budget_grid_fails_at_once() {
         let cases = crate::case::embedded().unwrap();
         let c = cases.iter().find(|c| c.name == "gimbal_lock").unwrap();
-        let mut p = crate::plan::scene_plan(c, c.scene("spin_d1e-2").unwrap()).unwrap();
+        let mut p =
+            crate::model::rigid_body::plan::scene_plan(c, c.scene("spin_d1e-2").unwrap()).unwrap();
         p.setup.grid.t_end = 1.0e9; // 1e11 steps of 1e-2 s
         for (integrator, value) in [("rk4", 1.0e-2), ("dop853", 1.0e-8)] {
-            let v = crate::registry::find("so3", integrator, "body").unwrap();
+            let v = crate::model::rigid_body::registry::find("so3", integrator, "body").unwrap();
             let t0 = std::time::Instant::now();
             let out = (v.run)(&p.setup, value).unwrap();
             assert!(t0.elapsed().as_secs_f64() < 1.0, "{integrator}");
@@ -619,7 +620,7 @@ mod tests {
         // Within the budget nothing changes: the run completes on its grid.
         p.setup.grid.t_end = 3.2;
         p.setup.limits.max_steps = 320;
-        let v = crate::registry::find("so3", "rk4", "body").unwrap();
+        let v = crate::model::rigid_body::registry::find("so3", "rk4", "body").unwrap();
         let out = (v.run)(&p.setup, 1.0e-2).unwrap();
         assert!(out.failure.is_none());
         assert_eq!(out.samples.len(), 321);

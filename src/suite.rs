@@ -17,7 +17,6 @@ use crate::integrate::MethodInfo;
 use crate::metrics::order;
 use crate::problem::{self, Entry, Problem, Stepping, Variant, Want};
 use crate::reference;
-use crate::registry::Setup;
 use crate::summary::{self, Env, FitRecord, Record, Status, Summary, Wall};
 
 /// Step ladders per method order class, and tolerances for adaptive methods.
@@ -42,19 +41,6 @@ impl Ladders {
             &self.order6
         }
     }
-}
-
-/// Everything the suite needs of one scene.
-#[derive(Debug, Clone)]
-pub struct ScenePlan {
-    pub case: String,
-    pub scene: String,
-    pub setup: Setup,
-    pub energy_scale: f64,
-    pub primary_metric: String,
-    pub inputs_sha256: String,
-    pub ladders: Ladders,
-    pub quick: Ladders,
 }
 
 /// Variant filters (empty = all).
@@ -236,17 +222,6 @@ fn base_record(p: &dyn Problem, param: &str, integrator: &str, formulation: &str
         inputs_sha256: p.inputs_sha256().into(),
         reference_sha256: None,
         series: None,
-    }
-}
-
-/// Accuracy claim of a reference for a metric.
-pub fn claim_for(r: &reference::Reference, metric: &str) -> f64 {
-    let c = &r.accuracy_claim;
-    match metric {
-        "position_error_max" => c.position.unwrap_or(c.rotation),
-        "velocity_error_max" => c.velocity.unwrap_or(c.omega),
-        "omega_error_max" => c.omega,
-        _ => c.rotation,
     }
 }
 

@@ -3,7 +3,7 @@
 //! fitted over the ladder points between 100x the reference's accuracy claim and 1e-2.
 mod common;
 
-use mbdbench::registry;
+use mbdbench::model::rigid_body::registry;
 use mbdbench::summary::{Status, Summary};
 
 fn declared(integrator: &str) -> f64 {
@@ -142,14 +142,18 @@ fn orders_on_free_body_gni() {
     // compensated implicit_midpoint_kahan (quat, so3) and simo_wong_kahan (gauss6_kahan is
     // exempt like gauss6)
     assert_eq!(n, 8 * 2 * 3 - 4 + 4 + 4 + 3, "fits checked");
-    let stored = mbdbench::reference::load(
+    let stored = mbdbench::model::rigid_body::reference::load(
         &mbdbench::cli::default_references(),
         "free_body",
         "gni",
         &plan.inputs_sha256,
     )
     .unwrap();
-    let floor = 100.0 * mbdbench::suite::claim_for(&stored.reference, "rotation_error_max");
+    let floor = 100.0
+        * mbdbench::model::rigid_body::reference::claim_for(
+            &stored.reference,
+            "rotation_error_max",
+        );
     // gauss6: at most two ladder points lie above the floor; where two do, their error ratio
     // shows at least order 6 - 0.25, and the fit is null for the stated reason.
     for f in s

@@ -24,10 +24,11 @@ use std::time::{Duration, Instant};
 
 use mbdbench::case::{self, Case, CaseError};
 use mbdbench::integrate::{FailureKind, Limits};
+use mbdbench::model::rigid_body::plan as rigid_plan;
+use mbdbench::model::rigid_body::registry::{self, Setup};
+use mbdbench::model::rigid_body::score::{self, ScoreContext};
 use mbdbench::plan;
-use mbdbench::registry::{self, Setup};
 use mbdbench::run::{Observe, RunOutput};
-use mbdbench::score::{self, ScoreContext};
 use mbdbench::suite::{self, RunOptions, VariantFilter};
 use proptest::prelude::*;
 use proptest::sample::Index;
@@ -359,7 +360,7 @@ fn check_case(c: &Case) {
             assert!(l.tol.iter().all(|t| *t > 0.0 && *t < 1.0));
         }
         assert_eq!(case::inputs_sha256(c, s).len(), 64);
-        if let Err(e) = plan::scene_plan(c, s) {
+        if let Err(e) = rigid_plan::scene_plan(c, s) {
             check_error(&c.file, &e);
         }
     }
@@ -899,7 +900,7 @@ proptest! {
         check_case(&c);
         let table = registry::variants();
         for s in &c.scenes {
-            let Ok(plan) = plan::scene_plan(&c, s) else { continue };
+            let Ok(plan) = rigid_plan::scene_plan(&c, s) else { continue };
             for (i, how) in &variants {
                 let v = i.get(table);
                 if registry::scene_na_reason(v, &plan.setup.body).is_some() {
@@ -943,7 +944,7 @@ proptest! {
         jobs in 1usize..=2,
     ) {
         let Ok(c) = case::load_str("cases/fuzz.toml", &p.toml()) else { return Ok(()) };
-        let Ok(plans) = plan::plans(std::slice::from_ref(&c), &[], &[]) else { return Ok(()) };
+        let Ok(plans) = rigid_plan::plans(std::slice::from_ref(&c), &[], &[]) else { return Ok(()) };
         let out = common::temp_dir("fuzz-suite");
         let opts = RunOptions {
             quick,

@@ -4,7 +4,7 @@
 mod common;
 
 use mbdbench::model::rigid_body::RigidBody;
-use mbdbench::registry;
+use mbdbench::model::rigid_body::registry;
 use mbdbench::summary::Status;
 
 /// simo_wong: max |E - E0| / |E0| <= 1e-12 over the horizon at every ladder step on

@@ -128,13 +128,14 @@ fn steps_do_not_allocate() {
 fn registry_run_allocations_do_not_grow_with_steps() {
     let cases = mbdbench::case::embedded().unwrap();
     let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
-    let mut p = mbdbench::plan::scene_plan(c, c.scene("large").unwrap()).unwrap();
+    let mut p =
+        mbdbench::model::rigid_body::plan::scene_plan(c, c.scene("large").unwrap()).unwrap();
     p.setup.grid = mbdbench::run::Grid {
         t_end: 1.0,
         sample_every: 0.1,
         score_every: 0.1,
     };
-    let v = mbdbench::registry::find("quat", "rk4", "body").unwrap();
+    let v = mbdbench::model::rigid_body::registry::find("quat", "rk4", "body").unwrap();
     let _ = (v.run)(&p.setup, 1e-3).unwrap(); // warm up lazily initialised statics
     let count = |dt: f64| {
         let a0 = allocs();

@@ -7,7 +7,6 @@ use std::path::PathBuf;
 use super::GateOptions;
 use crate::case::{self, Case};
 use crate::integrate::Stats;
-use crate::reference;
 use crate::summary::{Env, Record, Status, Summary};
 
 /// Three gates: a quick accuracy gate at the quick step 1e-2 (its bound is baseline x margin),
@@ -81,7 +80,8 @@ pub fn record(
 ) -> Record {
     let s = c.scene(scene).unwrap();
     let inputs = case::inputs_sha256(c, s);
-    let loaded = reference::load(&references(), &c.name, scene, &inputs).unwrap();
+    let loaded =
+        crate::model::rigid_body::reference::load(&references(), &c.name, scene, &inputs).unwrap();
     Record {
         case: c.name.clone(),
         scene: scene.into(),

@@ -28,7 +28,7 @@ fn rec_mut<'a>(s: &'a mut Summary, integrator: &str, dt: f64) -> &'a mut Record 
 #[test]
 fn quick_summary_is_recognised() {
     let cases = case::embedded().unwrap();
-    let plans = crate::plan::plans(&cases, &[], &[]).unwrap();
+    let plans = crate::model::rigid_body::plan::plans(&cases, &[], &[]).unwrap();
     let p = plans
         .iter()
         .find(|p| p.case == "nine_spring" && p.scene == "two_angles")

@@ -11,7 +11,7 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 use super::Scores;
 use crate::math::so3;
-use crate::reference::Reference;
+use crate::model::rigid_body::reference::Reference;
 use crate::run::RunOutput;
 
 /// Scores a run against a reference sampled on the same score grid.

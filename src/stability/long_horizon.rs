@@ -43,7 +43,7 @@ use std::time::Instant;
 use super::{Part, StudyOptions};
 use crate::case::Case;
 use crate::integrate::{Failure, FailureKind, Limits};
-use crate::registry::{self, Setup, Variant};
+use crate::model::rigid_body::registry::{self, Setup, Variant};
 use crate::run::{Observe, RunOutput};
 use crate::suite::VariantFilter;
 use crate::summary::{self, FitRecord, Record, Status, Wall};
@@ -384,7 +384,8 @@ pub fn study(cases: &[Case], filter: &VariantFilter, opts: &StudyOptions) -> Res
         let Some(scene) = case.scene(scene_name) else {
             continue;
         };
-        let plan = crate::plan::scene_plan(case, scene).map_err(|e| e.to_string())?;
+        let plan =
+            crate::model::rigid_body::plan::scene_plan(case, scene).map_err(|e| e.to_string())?;
         for &(param, integ, form) in VARIANTS {
             if !filter.admits(param, integ, form) {
                 continue;

@@ -91,7 +91,7 @@ pub fn narrowed(
 /// One search job: a scene and a variant.
 struct Job {
     scene: usize,
-    variant: &'static crate::registry::Variant,
+    variant: &'static crate::model::rigid_body::registry::Variant,
 }
 
 /// The scenes of the step search: every scene of every case with a `[stability]` table (the
@@ -102,7 +102,7 @@ pub fn study_scenes(
     scene_filter: &[String],
     quick: bool,
 ) -> Result<Vec<search::StudyScene>, String> {
-    let plans = crate::plan::plans(cases, case_filter, scene_filter)?;
+    let plans = crate::model::rigid_body::plan::plans(cases, case_filter, scene_filter)?;
     let mut out = vec![];
     for p in &plans {
         let Some(c) = cases.iter().find(|c| c.name == p.case) else {
@@ -131,9 +131,10 @@ pub fn step_search(
     let references: Vec<search::OnTheFly> = scenes.iter().map(|_| Default::default()).collect();
     let mut jobs = vec![];
     for (i, s) in scenes.iter().enumerate() {
-        for v in crate::registry::variants() {
+        for v in crate::model::rigid_body::registry::variants() {
             if filter.admits(v.param, v.integrator, v.formulation)
-                && crate::registry::scene_na_reason(v, &s.plan.setup.body).is_none()
+                && crate::model::rigid_body::registry::scene_na_reason(v, &s.plan.setup.body)
+                    .is_none()
             {
                 jobs.push(Job {
                     scene: i,
@@ -218,7 +219,7 @@ pub fn run_study(
         }
     }
     let sensitive = only(cases, sensitivity::FAMILIES);
-    let plans = crate::plan::plans(&sensitive, case_filter, scene_filter)?;
+    let plans = crate::model::rigid_body::plan::plans(&sensitive, case_filter, scene_filter)?;
     all.extend(sensitivity::study(&sensitive, &plans, opts)?);
     write_study(all, opts)
 }

@@ -42,9 +42,9 @@ use std::sync::Arc;
 use crate::case::{Case, StabilitySpec};
 use crate::integrate::{Failure, FailureKind};
 use crate::model::linear_modes;
-use crate::registry::{self, Variant};
+use crate::model::rigid_body::plan::ScenePlan;
+use crate::model::rigid_body::registry::{self, Variant};
 use crate::run::{Observe, RunOutput, Sample};
-use crate::suite::ScenePlan;
 use crate::summary::{Record, Status};
 
 /// Score times over the horizon.
@@ -726,10 +726,11 @@ mod tests {
     fn on_the_fly_reference_matches_the_stored_one() {
         let cases = crate::case::embedded().unwrap();
         let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
-        let plan = crate::plan::scene_plan(c, c.scene("two_angles").unwrap()).unwrap();
+        let plan =
+            crate::model::rigid_body::plan::scene_plan(c, c.scene("two_angles").unwrap()).unwrap();
         let scene = StudyScene::new(c, &plan).unwrap().unwrap();
         assert!(scene.horizon > 10.0);
-        let stored = crate::reference::load(
+        let stored = crate::model::rigid_body::reference::load(
             &crate::cli::default_references(),
             "nine_spring",
             "two_angles",

@@ -32,9 +32,9 @@ use super::{Part, StudyOptions};
 use crate::case::Case;
 use crate::math::so3;
 use crate::model::rigid_body::Observation;
-use crate::registry;
+use crate::model::rigid_body::plan::ScenePlan;
+use crate::model::rigid_body::registry;
 use crate::run::RunOutput;
-use crate::suite::ScenePlan;
 use crate::summary::{Record, Status};
 
 /// The size of the perturbation.
@@ -242,7 +242,7 @@ mod tests {
     fn plan(case: &str, scene: &str) -> ScenePlan {
         let cases = crate::case::embedded().unwrap();
         let c = cases.iter().find(|c| c.name == case).unwrap();
-        crate::plan::scene_plan(c, c.scene(scene).unwrap()).unwrap()
+        crate::model::rigid_body::plan::scene_plan(c, c.scene(scene).unwrap()).unwrap()
     }
 
     /// A spherical body's uniform spin is neutrally stable, and its transition matrix is known:

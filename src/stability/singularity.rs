@@ -27,7 +27,7 @@ use super::{Part, StudyOptions};
 use crate::case::Case;
 use crate::math::so3;
 use crate::model::rigid_body::case::{AngularInit, RigidScene};
-use crate::registry;
+use crate::model::rigid_body::registry;
 use crate::summary::{Record, Status};
 
 pub const CASE: &str = "gimbal_lock";
@@ -92,7 +92,7 @@ pub fn study(
             .ok_or("the singularity ladder needs a rigid-body scene")?;
         rs.angular = AngularInit::World(w);
         rs.omega0 = rs.r0.transpose() * w;
-        let plan = crate::plan::scene_plan(c, &s).map_err(|e| e.to_string())?;
+        let plan = crate::model::rigid_body::plan::scene_plan(c, &s).map_err(|e| e.to_string())?;
         plans.push((d, w, plan));
     }
     let mut jobs = vec![];
@@ -136,7 +136,7 @@ pub fn study(
 /// One run of the ladder, scored against the exact spin.
 fn run_one(
     v: &registry::Variant,
-    plan: &crate::suite::ScenePlan,
+    plan: &crate::model::rigid_body::plan::ScenePlan,
     d: f64,
     w: &Vector3<f64>,
     value: f64,
@@ -231,8 +231,9 @@ mod tests {
         let rs = s.physics_mut::<RigidScene>().unwrap();
         rs.angular = AngularInit::World(w);
         rs.omega0 = w;
-        let generated = crate::plan::scene_plan(c, &s).unwrap();
-        let stored = crate::plan::scene_plan(c, c.scene(TEMPLATE).unwrap()).unwrap();
+        let generated = crate::model::rigid_body::plan::scene_plan(c, &s).unwrap();
+        let stored =
+            crate::model::rigid_body::plan::scene_plan(c, c.scene(TEMPLATE).unwrap()).unwrap();
         assert_eq!(generated.inputs_sha256, stored.inputs_sha256);
     }
 

@@ -63,7 +63,8 @@ pub fn scenes(c: &Case, quick: bool) -> Result<Vec<(i32, StudyScene, StudyScene)
     let mut out = vec![];
     for &j in if quick { QUICK_EXPONENTS } else { EXPONENTS } {
         let cj = stiffened(c, j);
-        let mut plan = crate::plan::scene_plan(&cj, scene).map_err(|e| e.to_string())?;
+        let mut plan =
+            crate::model::rigid_body::plan::scene_plan(&cj, scene).map_err(|e| e.to_string())?;
         plan.scene = scene_name(j, false);
         let periods = StudyScene::new(&cj, &plan)?
             .ok_or_else(|| format!("{}: no [stability] table", c.file))?

@@ -6,8 +6,9 @@ use std::path::PathBuf;
 
 use mbdbench::case;
 use mbdbench::cli::default_references;
+use mbdbench::model::rigid_body::plan::{self as rigid_plan, ScenePlan};
 use mbdbench::plan;
-use mbdbench::suite::{self, RunOptions, ScenePlan, VariantFilter};
+use mbdbench::suite::{self, RunOptions, VariantFilter};
 use mbdbench::summary::{Record, Summary};
 
 /// A fresh temporary folder for one test.
@@ -22,7 +23,7 @@ pub fn temp_dir(tag: &str) -> PathBuf {
 pub fn plans(case_name: &str, scenes: &[&str]) -> Vec<ScenePlan> {
     let cases = case::embedded().unwrap();
     let scenes: Vec<String> = scenes.iter().map(|s| s.to_string()).collect();
-    plan::plans(&cases, &[case_name.to_string()], &scenes).unwrap()
+    rigid_plan::plans(&cases, &[case_name.to_string()], &scenes).unwrap()
 }
 
 /// The compiled problems of one case (all its scenes, or the named ones).

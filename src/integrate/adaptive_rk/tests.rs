@@ -160,9 +160,9 @@ fn blowup_gives_underflow() {
 fn tolerance_below_round_off_is_refused() {
     let cases = crate::case::embedded().unwrap();
     let c = cases.iter().find(|c| c.name == "gimbal_lock").unwrap();
-    let p = crate::plan::scene_plan(c, c.scene("spin_d1e-2").unwrap()).unwrap();
+    let p = crate::model::rigid_body::plan::scene_plan(c, c.scene("spin_d1e-2").unwrap()).unwrap();
     for integrator in ["dopri5", "dop853"] {
-        let v = crate::registry::find("so3", integrator, "body").unwrap();
+        let v = crate::model::rigid_body::registry::find("so3", integrator, "body").unwrap();
         let out = (v.run)(&p.setup, 1.7e-73).unwrap();
         let f = out.failure.unwrap();
         assert_eq!(out.stats.steps, 0, "refused before any step");

@@ -5,7 +5,7 @@
 //! `registry.rs` as the family-independent [`Variant`] the suite dispatches through.
 use crate::case::{Case, CaseError, Scene};
 use crate::problem::{Axes, Column, Family, Metric, Problem, Variant};
-use crate::registry;
+use crate::model::rigid_body::registry;
 
 /// The rigid-body family.
 pub static FAMILY: Family = Family {
@@ -121,7 +121,7 @@ fn variants() -> &'static [Variant] {
 }
 
 fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {
-    let plan = crate::plan::scene_plan(case, scene)?;
+    let plan = crate::model::rigid_body::plan::scene_plan(case, scene)?;
     Ok(Box::new(super::problem::RigidProblem::new(
         plan,
         case.reference,

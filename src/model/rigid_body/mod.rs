@@ -17,9 +17,15 @@
 //! Terms a scene does not have are absent (no springs loop, no gravity branch does work).
 //! A spring of zero current length has an undefined direction: its force is then taken as 0
 //! (the energy is still continuous there); no case comes near it.
+pub mod baseline;
 pub mod case;
 pub mod family;
+pub mod plan;
 pub mod problem;
+pub mod reference;
+pub mod refgen;
+pub mod registry;
+pub mod score;
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3, Vector6};
 use std::marker::PhantomData;

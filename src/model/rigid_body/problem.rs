@@ -1,7 +1,7 @@
 //! One compiled rigid-body scene behind the `Problem` seam: the scene plan (body, initial
 //! state, grid, limits, ladders, physics hash), its stored reference once attached, and the
 //! dispatch of a run to the registry's monomorphised run function of the variant. Scoring
-//! (`score.rs`) and the trajectory's named columns (design.md, "Files": position, quaternion,
+//! (`score.rs` beside this file) and the trajectory's named columns (design.md, "Files": position, quaternion,
 //! velocity, body angular velocity, energy at the sample times) are made here, so the suite
 //! sees only names and numbers.
 //!
@@ -12,12 +12,12 @@ use std::path::Path;
 use crate::case::ReferenceKind;
 use crate::integrate::MethodInfo;
 use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
-use crate::reference::{self, Loaded};
-use crate::refgen;
-use crate::registry::{self, Setup};
+use super::reference::{self, Loaded};
+use crate::model::rigid_body::refgen;
+use crate::model::rigid_body::registry::{self, Setup};
 use crate::run::Observe;
-use crate::score::{self, ScoreContext};
-use crate::suite::ScenePlan;
+use crate::model::rigid_body::score::{self, ScoreContext};
+use crate::model::rigid_body::plan::ScenePlan;
 
 /// A rigid-body scene with its reference (once attached).
 #[derive(Debug, Clone)]
@@ -107,7 +107,7 @@ impl Problem for RigidProblem {
     fn accuracy_claim(&self, metric: &str) -> Option<f64> {
         self.reference
             .as_ref()
-            .map(|l| crate::suite::claim_for(&l.reference, metric))
+            .map(|l| reference::claim_for(&l.reference, metric))
     }
     fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String> {
         let rv = registered(v);

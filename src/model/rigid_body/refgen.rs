@@ -18,10 +18,10 @@ use crate::math::so3;
 use crate::model::rigid_body::{Observation, RigidBody};
 use crate::model::torque_free::{TorqueFreeExact, spin_exact};
 
-use crate::reference::{AccuracyClaim, CrossCheck, Provenance, Reference};
-use crate::registry::{self, Setup};
+use super::reference::{AccuracyClaim, CrossCheck, Provenance, Reference};
+use crate::model::rigid_body::registry::{self, Setup};
 use crate::run::Grid;
-use crate::suite::ScenePlan;
+use crate::model::rigid_body::plan::ScenePlan;
 use crate::summary;
 
 /// A trajectory at the score times.

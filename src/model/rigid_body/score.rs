@@ -5,7 +5,7 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use crate::math::so3;
 use crate::metrics::{self, Scores};
 use crate::model::rigid_body::RigidBody;
-use crate::reference::Reference;
+use super::reference::Reference;
 use crate::run::RunOutput;
 use crate::summary::Series;
 

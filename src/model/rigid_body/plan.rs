@@ -1,0 +1,74 @@
+//! The rigid body's plan of one scene: the compiled body, the initial state, the grid, the
+//! work limits, the ladders and the physics hash, as `RigidProblem`, the stability study and
+//! the benches use them (design.md, "Case files"; the shared parts come from `crate::plan`).
+//! Fails with a `CaseError` naming the scene when the scene is not a rigid-body scene.
+use crate::case::{self, Case, Scene};
+use crate::integrate::Limits;
+use crate::plan::{ladders, select};
+use crate::run::Grid;
+use crate::suite::Ladders;
+
+use super::case as rigid_case;
+use super::registry::Setup;
+
+/// Everything the suite needs of one scene.
+#[derive(Debug, Clone)]
+pub struct ScenePlan {
+    pub case: String,
+    pub scene: String,
+    pub setup: Setup,
+    pub energy_scale: f64,
+    pub primary_metric: String,
+    pub inputs_sha256: String,
+    pub ladders: Ladders,
+    pub quick: Ladders,
+}
+
+/// The plan of one scene.
+pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
+    let body = rigid_case::rigid_body(c, s)?;
+    let initial = rigid_case::RigidScene::of(s)
+        .map(rigid_case::initial)
+        .ok_or_else(|| case::CaseError {
+            file: c.file.clone(),
+            key: format!("scene[{}]", s.index),
+            message: "not a rigid-body scene".into(),
+        })?;
+    let limits = Limits {
+        max_steps: c.max_steps,
+        max_rhs_evals: c.max_rhs_evals.unwrap_or(Limits::default().max_rhs_evals),
+    };
+    Ok(ScenePlan {
+        case: c.name.clone(),
+        scene: s.name.clone(),
+        setup: Setup {
+            body,
+            initial,
+            grid: Grid {
+                t_end: s.t_end,
+                sample_every: s.sample_every,
+                score_every: s.score_every,
+            },
+            limits,
+            observe: crate::run::Observe::Grid,
+        },
+        energy_scale: c.energy_scale,
+        primary_metric: c.primary_metric.clone(),
+        inputs_sha256: case::inputs_sha256(c, s),
+        ladders: ladders(s.ladder(false)),
+        quick: ladders(s.ladder(true)),
+    })
+}
+
+/// The plans of the selected cases and scenes (empty filter lists select all). A name in a
+/// filter that matches nothing is an error.
+pub fn plans(
+    cases: &[Case],
+    case_filter: &[String],
+    scene_filter: &[String],
+) -> Result<Vec<ScenePlan>, String> {
+    select(cases, case_filter, scene_filter)?
+        .into_iter()
+        .map(|(c, s)| scene_plan(c, s).map_err(|e| e.to_string()))
+        .collect()
+}
