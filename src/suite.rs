@@ -15,9 +15,9 @@ use std::time::Instant;
 use crate::case::Case;
 use crate::integrate::MethodInfo;
 use crate::metrics::order;
-use crate::problem::{self, Entry, Problem, Stepping, Variant, Want};
+use crate::problem::{self, Entry, Problem, Variant, Want};
 use crate::reference;
-use crate::summary::{self, Env, FitRecord, Record, Status, Summary, Wall};
+use crate::summary::{self, Env, FitRecord, Record, RunKey, Status, Summary, Wall};
 
 /// Step ladders per method order class, and tolerances for adaptive methods.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -204,25 +204,10 @@ impl Progress {
 }
 
 fn base_record(p: &dyn Problem, param: &str, integrator: &str, formulation: &str) -> Record {
-    Record {
-        case: p.case().into(),
-        scene: p.scene().into(),
-        param: param.into(),
-        integrator: integrator.into(),
-        formulation: formulation.into(),
-        dt: None,
-        tol: None,
-        status: Status::NotApplicable,
-        failure: None,
-        reason: None,
-        metrics: BTreeMap::new(),
-        metric_reasons: BTreeMap::new(),
-        stats: Default::default(),
-        wall_s: None,
-        inputs_sha256: p.inputs_sha256().into(),
-        reference_sha256: None,
-        series: None,
-    }
+    Record::new(
+        RunKey::new(p.case(), p.scene(), param, integrator, formulation),
+        p.inputs_sha256(),
+    )
 }
 
 /// Attaches the stored references of the problems (none with a `--t-end` override, which
@@ -362,33 +347,19 @@ fn run_job(p: &dyn Problem, job: &Job) -> Done {
     let v = job.variant;
     let mut rec = base_record(p, v.param, v.integrator, v.formulation);
     let stepping = v.stepping(job.value);
-    match stepping {
-        Stepping::Dt(h) => rec.dt = Some(h),
-        Stepping::Tol(t) => rec.tol = Some(t),
-    }
+    rec.set_stepping(stepping);
     rec.reference_sha256 = p.reference_sha256().map(str::to_string);
     let out = match p.run(v, stepping, Want::Scored) {
         Ok(o) => o,
         Err(msg) => {
-            rec.status = Status::Failed;
-            rec.failure = Some(crate::integrate::Failure::new(
-                crate::integrate::FailureKind::WorkLimit,
-                0.0,
-                msg,
-            ));
+            rec.refuse(msg);
             return Done {
                 record: rec,
                 series: None,
             };
         }
     };
-    rec.stats = out.stats;
-    rec.status = if out.failure.is_some() {
-        Status::Failed
-    } else {
-        Status::Ok
-    };
-    rec.failure = out.failure;
+    rec.take_run(out.stats, out.failure);
     rec.metrics = out.scores.values;
     rec.metric_reasons = out.scores.reasons;
     let id = summary::run_id(v.param, v.integrator, v.formulation, rec.dt, rec.tol);
@@ -410,7 +381,7 @@ fn fit_orders(problems: &[Box<dyn Problem>], records: &[Record]) -> Vec<FitRecor
         let mut groups: BTreeMap<[usize; 3], Vec<&Record>> = BTreeMap::new();
         for r in records
             .iter()
-            .filter(|r| r.case == p.case() && r.scene == p.scene() && r.dt.is_some())
+            .filter(|r| r.key.case == p.case() && r.key.scene == p.scene() && r.dt.is_some())
         {
             groups.entry(r.variant_order()).or_default().push(r);
         }
@@ -426,11 +397,13 @@ fn fit_orders(problems: &[Box<dyn Problem>], records: &[Record]) -> Vec<FitRecor
                 .collect();
             let f = order::fit(&pts, claim);
             fits.push(FitRecord {
-                case: p.case().to_string(),
-                scene: p.scene().to_string(),
-                param: rs[0].param.clone(),
-                integrator: rs[0].integrator.clone(),
-                formulation: rs[0].formulation.clone(),
+                key: crate::summary::RunKey::new(
+                    p.case(),
+                    p.scene(),
+                    &rs[0].key.param,
+                    &rs[0].key.integrator,
+                    &rs[0].key.formulation,
+                ),
                 metric: p.primary_metric().to_string(),
                 order: f.order,
                 reason: f.reason,
@@ -458,7 +431,7 @@ pub fn print_table(
     let mut by_scene: BTreeMap<(String, String), Vec<&Record>> = BTreeMap::new();
     for r in &s.records {
         by_scene
-            .entry((r.case.clone(), r.scene.clone()))
+            .entry((r.key.case.clone(), r.key.scene.clone()))
             .or_default()
             .push(r);
     }
@@ -468,11 +441,11 @@ pub fn print_table(
         .map(|f| {
             (
                 (
-                    f.case.as_str(),
-                    f.scene.as_str(),
-                    f.param.as_str(),
-                    f.integrator.as_str(),
-                    f.formulation.as_str(),
+                    f.key.case.as_str(),
+                    f.key.scene.as_str(),
+                    f.key.param.as_str(),
+                    f.key.integrator.as_str(),
+                    f.key.formulation.as_str(),
                 ),
                 f.order,
             )
@@ -500,9 +473,9 @@ pub fn print_table(
                 continue;
             }
             let k = (
-                r.param.as_str(),
-                r.integrator.as_str(),
-                r.formulation.as_str(),
+                r.key.param.as_str(),
+                r.key.integrator.as_str(),
+                r.key.formulation.as_str(),
             );
             last.insert(k, r);
             if r.status == Status::Failed {

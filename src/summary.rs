@@ -25,14 +25,49 @@ pub struct Wall {
     pub median: f64,
 }
 
-/// One run (or one `n/a` combination).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Record {
+/// Which run a record is about, up to its ladder point: the case, the scene and the names of
+/// the variant on the family's three axes. The one key type of every record (runs, order fits,
+/// gate rows); `#[serde(flatten)]` keeps its five fields at the top level of each JSON object,
+/// as design.md's schema has them.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct RunKey {
     pub case: String,
     pub scene: String,
     pub param: String,
     pub integrator: String,
     pub formulation: String,
+}
+
+impl RunKey {
+    /// The key of `variant` run on scene `scene` of case `case`.
+    pub fn new(case: &str, scene: &str, param: &str, integrator: &str, formulation: &str) -> Self {
+        RunKey {
+            case: case.into(),
+            scene: scene.into(),
+            param: param.into(),
+            integrator: integrator.into(),
+            formulation: formulation.into(),
+        }
+    }
+
+    /// The variant's place in the families' axis order (`problem::axis_names`).
+    pub fn variant_order(&self) -> [usize; 3] {
+        crate::problem::variant_order(&self.param, &self.integrator, &self.formulation)
+    }
+
+    /// Whether both keys name the same variant (on any case and scene).
+    pub fn same_variant(&self, o: &RunKey) -> bool {
+        self.param == o.param
+            && self.integrator == o.integrator
+            && self.formulation == o.formulation
+    }
+}
+
+/// One run (or one `n/a` combination).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Record {
+    #[serde(flatten)]
+    pub key: RunKey,
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub dt: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none", default)]
@@ -53,17 +88,67 @@ pub struct Record {
 }
 
 impl Record {
+    /// The record of a run not made yet: `n/a`, no step, no metrics, no work.
+    pub fn new(key: RunKey, inputs_sha256: &str) -> Record {
+        Record {
+            key,
+            dt: None,
+            tol: None,
+            status: Status::NotApplicable,
+            failure: None,
+            reason: None,
+            metrics: BTreeMap::new(),
+            metric_reasons: BTreeMap::new(),
+            stats: Stats::default(),
+            wall_s: None,
+            inputs_sha256: inputs_sha256.into(),
+            reference_sha256: None,
+            series: None,
+        }
+    }
+
+    /// Sets the ladder point: a fixed step (`dt`) or a tolerance (`tol`).
+    pub fn set_stepping(&mut self, s: crate::run::Stepping) {
+        match s {
+            crate::run::Stepping::Dt(h) => self.dt = Some(h),
+            crate::run::Stepping::Tol(t) => self.tol = Some(t),
+        }
+    }
+
+    /// Takes the outcome of a run that was made: its work, and `ok` or `failed` with the
+    /// typed failure.
+    pub fn take_run(&mut self, stats: Stats, failure: Option<Failure>) {
+        self.stats = stats;
+        self.status = if failure.is_some() {
+            Status::Failed
+        } else {
+            Status::Ok
+        };
+        self.failure = failure;
+    }
+
+    /// A run the family refused to start (its message, e.g. a work budget): `failed` with a
+    /// `work_limit` failure at t = 0.
+    pub fn refuse(&mut self, message: String) {
+        self.status = Status::Failed;
+        self.failure = Some(Failure::new(
+            crate::integrate::FailureKind::WorkLimit,
+            0.0,
+            message,
+        ));
+    }
+
     /// The variant's place in the families' axis order (`problem::axis_names`).
     pub fn variant_order(&self) -> [usize; 3] {
-        crate::problem::variant_order(&self.param, &self.integrator, &self.formulation)
+        self.key.variant_order()
     }
 
     /// The report order of records: case, scene, variant, then coarse steps (loose
     /// tolerances) first, so the finest ladder point of a variant is its last record.
     pub fn report_order(&self) -> (String, String, [usize; 3], u64, u64) {
         (
-            self.case.clone(),
-            self.scene.clone(),
+            self.key.case.clone(),
+            self.key.scene.clone(),
             self.variant_order(),
             self.dt.map_or(0, |x| u64::MAX - x.to_bits()),
             self.tol.map_or(0, |x| u64::MAX - x.to_bits()),
@@ -74,11 +159,8 @@ impl Record {
 /// An observed order over a ladder.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FitRecord {
-    pub case: String,
-    pub scene: String,
-    pub param: String,
-    pub integrator: String,
-    pub formulation: String,
+    #[serde(flatten)]
+    pub key: RunKey,
     pub metric: String,
     pub order: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none", default)]

@@ -18,28 +18,28 @@ fn declared(integrator: &str) -> f64 {
 fn check_scene(s: &Summary, scene: &str, exempt: &[(&str, &str)]) -> usize {
     let mut checked = 0;
     let mut bad = vec![];
-    for f in s.fits.iter().filter(|f| f.scene == scene) {
+    for f in s.fits.iter().filter(|f| f.key.scene == scene) {
         let failed = s.records.iter().any(|r| {
-            r.scene == scene
-                && r.param == f.param
-                && r.integrator == f.integrator
-                && r.formulation == f.formulation
+            r.key.scene == scene
+                && r.key.param == f.key.param
+                && r.key.integrator == f.key.integrator
+                && r.key.formulation == f.key.formulation
                 && r.status == Status::Failed
         });
         if failed {
             continue; // asserted separately (the order claim is for runs that reach t_end)
         }
-        if exempt.contains(&(f.param.as_str(), f.integrator.as_str()))
-            || exempt.contains(&("*", f.integrator.as_str()))
+        if exempt.contains(&(f.key.param.as_str(), f.key.integrator.as_str()))
+            || exempt.contains(&("*", f.key.integrator.as_str()))
         {
             continue;
         }
-        let p = declared(&f.integrator);
+        let p = declared(&f.key.integrator);
         match f.order {
             Some(o) if (o - p).abs() <= 0.25 => checked += 1,
             _ => bad.push(format!(
                 "{}/{}/{}: order {:?} (declared {p}), reason {:?}, points {:?}",
-                f.param, f.integrator, f.formulation, f.order, f.reason, f.points
+                f.key.param, f.key.integrator, f.key.formulation, f.order, f.reason, f.points
             )),
         }
     }
@@ -76,7 +76,7 @@ fn orders_on_nine_spring_two_angles() {
     let rk4_so3 = s
         .fits
         .iter()
-        .find(|f| f.param == "so3" && f.integrator == "rk4" && f.formulation == "body")
+        .find(|f| f.key.param == "so3" && f.key.integrator == "rk4" && f.key.formulation == "body")
         .unwrap();
     assert!((rk4_so3.order.unwrap() - 4.0).abs() <= 0.25);
 }
@@ -159,13 +159,13 @@ fn orders_on_free_body_gni() {
     for f in s
         .fits
         .iter()
-        .filter(|f| f.integrator == "gauss6" && f.param != "euler_zxz")
+        .filter(|f| f.key.integrator == "gauss6" && f.key.param != "euler_zxz")
     {
         let e: Vec<f64> = [0.1, 0.05, 0.025]
             .iter()
             .map(|h| {
                 common::metric(
-                    common::get(&s, "gni", &f.param, "gauss6", &f.formulation, *h),
+                    common::get(&s, "gni", &f.key.param, "gauss6", &f.key.formulation, *h),
                     "rotation_error_max",
                 )
             })
@@ -174,13 +174,18 @@ fn orders_on_free_body_gni() {
         assert!(f.order.is_none() && f.reason.as_deref().unwrap().contains("lie between"));
         if e[1] >= floor {
             let local = (e[0] / e[1]).log2();
-            assert!(local >= 5.75, "{}/{}: errors {e:?}", f.param, f.formulation);
+            assert!(
+                local >= 5.75,
+                "{}/{}: errors {e:?}",
+                f.key.param,
+                f.key.formulation
+            );
         }
     }
     for r in s
         .records
         .iter()
-        .filter(|r| r.param == "euler_zxz" && r.status != Status::NotApplicable)
+        .filter(|r| r.key.param == "euler_zxz" && r.status != Status::NotApplicable)
     {
         let f = r.failure.as_ref().expect("euler_zxz fails on gni");
         assert_eq!(

@@ -108,17 +108,17 @@ fn adaptive_cost_conditioning_and_singular_starts() {
     // summing the steps. rk4, gauss6 and dop853 stay within 1e-12; explicit euler's 3200 to
     // 25600 additions of a step that is not a binary fraction reach 1.0e-12 (bounded by N eps).
     for r in s.records.iter().filter(|r| {
-        r.scene == "spin_d0"
-            && (r.param == "euler_xyz" || r.param == "euler_zyx")
-            && r.integrator != "euler"
+        r.key.scene == "spin_d0"
+            && (r.key.param == "euler_xyz" || r.key.param == "euler_zyx")
+            && r.key.integrator != "euler"
     }) {
         assert_eq!(r.status, Status::Ok, "{r:?}");
         let e = common::metric(r, "rotation_error_max");
         assert!(
             e <= 1e-12,
             "{}/{} {:?}: {e:e}",
-            r.param,
-            r.integrator,
+            r.key.param,
+            r.key.integrator,
             r.dt.or(r.tol)
         );
     }
@@ -127,10 +127,10 @@ fn adaptive_cost_conditioning_and_singular_starts() {
         .iter()
         .filter(|r| r.status != Status::NotApplicable)
     {
-        let starts_singular = (r.param == "euler_zxz" && !r.scene.starts_with("spin_zxz"))
-            || (r.scene.starts_with("spin_zxz")
-                && r.param != "euler_zxz"
-                && r.param.starts_with("euler"));
+        let starts_singular = (r.key.param == "euler_zxz" && !r.key.scene.starts_with("spin_zxz"))
+            || (r.key.scene.starts_with("spin_zxz")
+                && r.key.param != "euler_zxz"
+                && r.key.param.starts_with("euler"));
         if starts_singular {
             assert_eq!(kind(r).as_deref(), Some("singular_chart"), "{r:?}");
             assert_eq!(r.failure.as_ref().unwrap().t, 0.0);

@@ -33,7 +33,12 @@ fn simo_wong_conserves_energy_to_round_off() {
         for r in runs {
             assert_eq!(r.status, Status::Ok, "{r:?}");
             let d = common::metric(r, "energy_drift_max");
-            assert!(d <= 1e-12, "{case}/{} dt {:?}: drift {d:e}", r.scene, r.dt);
+            assert!(
+                d <= 1e-12,
+                "{case}/{} dt {:?}: drift {d:e}",
+                r.key.scene,
+                r.dt
+            );
         }
     }
 }
@@ -108,13 +113,13 @@ fn constraint_residuals() {
         for r in s.records.iter().filter(|r| r.status == Status::Ok) {
             let c = common::metric(r, "constraint_error_max");
             assert!(c.is_finite());
-            if matches!(r.param.as_str(), "quat_proj" | "matrix_proj" | "so3") {
+            if matches!(r.key.param.as_str(), "quat_proj" | "matrix_proj" | "so3") {
                 assert!(
                     c < 1e-13,
                     "{case}/{}/{}/{}: {c:e}",
-                    r.scene,
-                    r.param,
-                    r.integrator
+                    r.key.scene,
+                    r.key.param,
+                    r.key.integrator
                 );
             }
         }

@@ -83,11 +83,7 @@ pub fn record(
     let loaded =
         crate::model::rigid_body::reference::load(&references(), &c.name, scene, &inputs).unwrap();
     Record {
-        case: c.name.clone(),
-        scene: scene.into(),
-        param: variant.0.into(),
-        integrator: variant.1.into(),
-        formulation: variant.2.into(),
+        key: crate::summary::RunKey::new(&c.name, scene, variant.0, variant.1, variant.2),
         dt,
         tol,
         status: Status::Ok,

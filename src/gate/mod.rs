@@ -62,11 +62,8 @@ pub enum Verdict {
 /// One evaluated row: a gated (or baseline-compared) record and metric.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct GateRow {
-    pub case: String,
-    pub scene: String,
-    pub param: String,
-    pub integrator: String,
-    pub formulation: String,
+    #[serde(flatten)]
+    pub key: crate::summary::RunKey,
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub dt: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none", default)]
@@ -361,11 +358,11 @@ impl<'a> RecordIndex<'a> {
         );
         for (r, from_stability) in tagged {
             map.entry((
-                r.case.as_str(),
-                r.scene.as_str(),
-                r.param.as_str(),
-                r.integrator.as_str(),
-                r.formulation.as_str(),
+                r.key.case.as_str(),
+                r.key.scene.as_str(),
+                r.key.param.as_str(),
+                r.key.integrator.as_str(),
+                r.key.formulation.as_str(),
             ))
             .or_default()
             .push((r, from_stability));
@@ -438,8 +435,8 @@ pub fn is_quick_summary(cases: &[Case], summary: &Summary) -> bool {
         };
         let Some(s) = cases
             .iter()
-            .find(|c| c.name == r.case)
-            .and_then(|c| c.scene(&r.scene))
+            .find(|c| c.name == r.key.case)
+            .and_then(|c| c.scene(&r.key.scene))
         else {
             return false;
         };
@@ -535,11 +532,13 @@ fn judge(
 ) -> GateRow {
     let v = p.variant;
     let mut row = GateRow {
-        case: p.problem.case().to_string(),
-        scene: p.problem.scene().to_string(),
-        param: v.param.into(),
-        integrator: v.integrator.into(),
-        formulation: v.formulation.into(),
+        key: crate::summary::RunKey::new(
+            p.problem.case(),
+            p.problem.scene(),
+            v.param,
+            v.integrator,
+            v.formulation,
+        ),
         dt: p.value.filter(|_| !v.info.adaptive),
         tol: p.value.filter(|_| v.info.adaptive),
         metric: g.metric.clone(),

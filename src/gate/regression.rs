@@ -27,7 +27,7 @@ use super::{GateError, GateRow, Verdict, failure_text, metric_value};
 use crate::case::Case;
 use crate::problem::Problem;
 use crate::reference;
-use crate::summary::{Record, Status, Summary};
+use crate::summary::{Record, RunKey, Status, Summary};
 
 /// The default `--factor`.
 pub const DEFAULT_FACTOR: f64 = 3.0;
@@ -60,16 +60,12 @@ pub fn update_baseline(summary_path: &Path, baseline_path: &Path) -> Result<(), 
     reference::write_atomic(baseline_path, text.as_bytes()).map_err(|e| write(e.to_string()))
 }
 
-/// (case, scene, param, integrator, formulation, dt bits, tol bits).
-type RunKey<'a> = (&'a str, &'a str, &'a str, &'a str, &'a str, u64, u64);
+/// A run and its ladder point (dt bits, tol bits).
+type PointKey<'a> = (&'a RunKey, u64, u64);
 
-fn run_key(r: &Record) -> RunKey<'_> {
+fn run_key(r: &Record) -> PointKey<'_> {
     (
-        &r.case,
-        &r.scene,
-        &r.param,
-        &r.integrator,
-        &r.formulation,
+        &r.key,
         r.dt.map_or(0, f64::to_bits),
         r.tol.map_or(0, f64::to_bits),
     )
@@ -77,11 +73,7 @@ fn run_key(r: &Record) -> RunKey<'_> {
 
 fn row(r: &Record, metric: &str, value: Option<f64>, threshold: String) -> GateRow {
     GateRow {
-        case: r.case.clone(),
-        scene: r.scene.clone(),
-        param: r.param.clone(),
-        integrator: r.integrator.clone(),
-        formulation: r.formulation.clone(),
+        key: r.key.clone(),
         dt: r.dt,
         tol: r.tol,
         metric: metric.into(),
@@ -95,11 +87,7 @@ fn row(r: &Record, metric: &str, value: Option<f64>, threshold: String) -> GateR
 /// A failing row about a whole scene.
 fn scene_row(case: &str, scene: &str, metric: &str, threshold: &str, note: String) -> GateRow {
     GateRow {
-        case: case.into(),
-        scene: scene.into(),
-        param: "*".into(),
-        integrator: "*".into(),
-        formulation: "*".into(),
+        key: RunKey::new(case, scene, "*", "*", "*"),
         dt: None,
         tol: None,
         metric: metric.into(),
@@ -121,7 +109,7 @@ pub fn compare_baseline(
     references: &Path,
     factor: f64,
 ) -> Result<Vec<GateRow>, GateError> {
-    let base: BTreeMap<RunKey, &Record> = baseline
+    let base: BTreeMap<PointKey, &Record> = baseline
         .records
         .iter()
         .filter(|r| r.status != Status::NotApplicable)
@@ -143,7 +131,9 @@ pub fn compare_baseline(
         };
         common += 1;
         if b.inputs_sha256 != r.inputs_sha256 {
-            *stale.entry((r.case.clone(), r.scene.clone())).or_default() += 1;
+            *stale
+                .entry((r.key.case.clone(), r.key.scene.clone()))
+                .or_default() += 1;
             continue;
         }
         if b.status == Status::Ok && r.status == Status::Failed {
@@ -156,7 +146,7 @@ pub fn compare_baseline(
         if b.status != Status::Ok || r.status != Status::Ok {
             continue;
         }
-        let pairs: Vec<(&str, f64, f64)> = error_metrics(cases, &r.case)
+        let pairs: Vec<(&str, f64, f64)> = error_metrics(cases, &r.key.case)
             .iter()
             .filter_map(|m| {
                 let old = metric_value(b, m).flatten()?;
@@ -166,8 +156,8 @@ pub fn compare_baseline(
             .collect();
         if !pairs.is_empty() {
             let loaded = claims
-                .entry((r.case.clone(), r.scene.clone()))
-                .or_insert_with(|| load_reference(cases, references, &r.case, &r.scene));
+                .entry((r.key.case.clone(), r.key.scene.clone()))
+                .or_insert_with(|| load_reference(cases, references, &r.key.case, &r.key.scene));
             if let Ok(reference) = loaded {
                 for (m, old, new) in pairs {
                     let floor = FLOOR_CLAIMS * reference.accuracy_claim(m).unwrap_or(f64::INFINITY);
@@ -309,7 +299,7 @@ mod tests {
     fn rk4_at(s: &mut Summary, dt: f64) -> &mut Record {
         s.records
             .iter_mut()
-            .find(|r| r.integrator == "rk4" && r.dt == Some(dt))
+            .find(|r| r.key.integrator == "rk4" && r.dt == Some(dt))
             .unwrap()
     }
 

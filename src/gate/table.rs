@@ -14,7 +14,7 @@ fn variant(r: &GateRow) -> String {
     };
     format!(
         "{}/{}/{}/{}{point}",
-        r.scene, r.param, r.integrator, r.formulation
+        r.key.scene, r.key.param, r.key.integrator, r.key.formulation
     )
 }
 
@@ -41,7 +41,7 @@ pub fn print_table(rows: &[GateRow], out: &mut impl Write) -> std::io::Result<()
                 Verdict::Fail => format!("FAIL  {}", r.note),
             };
             [
-                r.case.clone(),
+                r.key.case.clone(),
                 variant(r),
                 r.metric.clone(),
                 value(r),

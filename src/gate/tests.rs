@@ -12,14 +12,14 @@ fn table(rows: &[GateRow]) -> String {
 
 fn find<'a>(rows: &'a [GateRow], metric: &str, param: &str) -> &'a GateRow {
     rows.iter()
-        .find(|r| r.metric == metric && r.param == param)
+        .find(|r| r.metric == metric && r.key.param == param)
         .unwrap()
 }
 
 fn rec_mut<'a>(s: &'a mut Summary, integrator: &str, dt: f64) -> &'a mut Record {
     s.records
         .iter_mut()
-        .find(|r| r.integrator == integrator && r.dt == Some(dt))
+        .find(|r| r.key.integrator == integrator && r.dt == Some(dt))
         .unwrap()
 }
 
@@ -36,7 +36,7 @@ fn quick_summary_is_recognised() {
     let mut s = passing(&nine());
     s.records.truncate(1);
     let r = &mut s.records[0];
-    (r.case, r.scene, r.tol) = ("nine_spring".into(), "two_angles".into(), None);
+    (r.key.case, r.key.scene, r.tol) = ("nine_spring".into(), "two_angles".into(), None);
     r.dt = Some(p.quick.order2_4[0]);
     assert!(is_quick_summary(&cases, &s));
     let off = *p
@@ -67,7 +67,7 @@ fn passing_summary_passes() {
     let cond: Vec<&str> = rows
         .iter()
         .filter(|r| r.metric == "conditioning_min")
-        .map(|r| r.param.as_str())
+        .map(|r| r.key.param.as_str())
         .collect();
     assert_eq!(cond.len(), 2);
     assert!(cond.contains(&"so3") && cond.contains(&"quat"));
@@ -178,7 +178,7 @@ fn stale_reference_hash_fails() {
 fn missing_record_and_unusable_values_fail() {
     let c = nine();
     let mut s = passing(&c);
-    s.records.retain(|r| r.param != "quat");
+    s.records.retain(|r| r.key.param != "quat");
     let rows = evaluate(std::slice::from_ref(&c), &s, None, &opts(false)).unwrap();
     let r = find(&rows, "conditioning_min", "quat");
     assert_eq!((r.verdict, r.value), (Verdict::Fail, None));
@@ -295,7 +295,7 @@ fn stability_record_without_the_metric_is_no_stand_in() {
     let c = nine();
     let mut s = passing(&c);
     s.records
-        .retain(|r| !(r.param == "quat" && r.integrator == "dopri5"));
+        .retain(|r| !(r.key.param == "quat" && r.key.integrator == "dopri5"));
     let mut other = fixture::record(
         &c,
         "two_angles",

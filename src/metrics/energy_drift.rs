@@ -7,6 +7,32 @@ use super::Scores;
 use crate::model::rigid_body::RigidBody;
 use crate::run::RunOutput;
 
+/// The relative drift of each energy from the first, the one expression of the summary, the
+/// references, the long-horizon study and the report: `|E_k - E_0| / max(|E_0|, energy_scale)`.
+/// With a zero denominator (`E_0 = 0` and no scale, as a report of a case it does not know)
+/// the absolute drift `|E_k - E_0|`. Empty for no energies.
+///
+/// # Example
+///
+/// ```
+/// use mbdbench::metrics::energy_drift::relative;
+///
+/// let d: Vec<f64> = relative(&[-2.0, -2.5, -1.0], 4.0).collect();
+/// assert_eq!(d, vec![0.0, 0.125, 0.25]); // the scale 4 J exceeds |E0| = 2 J
+/// assert_eq!(relative(&[10.0, 11.0], 1.0).last(), Some(0.1));
+/// ```
+pub fn relative(energies: &[f64], energy_scale: f64) -> impl Iterator<Item = f64> + '_ {
+    let e0 = energies.first().copied().unwrap_or(0.0);
+    let d = e0.abs().max(energy_scale);
+    let scale = if d > 0.0 { d } else { 1.0 };
+    energies.iter().map(move |e| (e - e0).abs() / scale)
+}
+
+/// The largest relative drift (`relative`), 0 for no energies.
+pub fn max_relative(energies: &[f64], energy_scale: f64) -> f64 {
+    relative(energies, energy_scale).fold(0.0, f64::max)
+}
+
 /// The energy at each score point of `out`.
 pub fn energies(out: &RunOutput, body: &RigidBody) -> Vec<f64> {
     out.scored().map(|s| body.energy(&s.obs)).collect()
@@ -20,18 +46,18 @@ pub fn score<O>(out: &RunOutput<O>, energies: &[f64], energy_scale: f64, s: &mut
         s.null("energy_drift_final", why);
         return;
     }
-    let Some(&e0) = energies.first() else {
+    if energies.is_empty() {
         s.null("energy_drift_max", "no samples");
         s.null("energy_drift_final", "no samples");
         return;
-    };
-    let scale = e0.abs().max(energy_scale);
+    }
     let mut m = 0.0_f64;
+    let mut last = 0.0;
     let mut finite = true;
-    for e in energies {
-        let d = (e - e0).abs() / scale;
+    for d in relative(energies, energy_scale) {
         finite &= d.is_finite();
         m = m.max(d);
+        last = d;
     }
     if !finite {
         s.null("energy_drift_max", "non-finite energy");
@@ -39,10 +65,7 @@ pub fn score<O>(out: &RunOutput<O>, energies: &[f64], energy_scale: f64, s: &mut
         return;
     }
     s.set("energy_drift_max", m);
-    s.set(
-        "energy_drift_final",
-        (energies[energies.len() - 1] - e0).abs() / scale,
-    );
+    s.set("energy_drift_final", last);
 }
 
 #[cfg(test)]

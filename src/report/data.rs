@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 use crate::case::Case;
 use crate::problem::{Axis, axis_position};
-use crate::summary::{FitRecord, Record, Series, Status, Summary, run_id};
+use crate::summary::{FitRecord, Record, RunKey, Series, Status, Summary, run_id};
 
 /// A variant: parameterization x integrator x formulation.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
@@ -23,12 +23,12 @@ pub struct VariantKey {
 }
 
 impl VariantKey {
-    /// The variant of a record.
-    pub fn of(r: &Record) -> Self {
+    /// The variant of a record's or a fit's run key.
+    pub fn of(k: &RunKey) -> Self {
         VariantKey {
-            param: r.param.clone(),
-            integrator: r.integrator.clone(),
-            formulation: r.formulation.clone(),
+            param: k.param.clone(),
+            integrator: k.integrator.clone(),
+            formulation: k.formulation.clone(),
         }
     }
 
@@ -248,20 +248,15 @@ pub fn case_views<'a>(summary: &'a Summary, cases: &'a [Case]) -> Vec<CaseView<'
     let mut by_case: BTreeMap<&str, BTreeMap<&str, Vec<&'a Record>>> = BTreeMap::new();
     for r in &summary.records {
         by_case
-            .entry(&r.case)
+            .entry(&r.key.case)
             .or_default()
-            .entry(&r.scene)
+            .entry(&r.key.scene)
             .or_default()
             .push(r);
     }
     let mut fits: BTreeMap<(&str, &str, VariantKey), &'a FitRecord> = BTreeMap::new();
     for f in &summary.fits {
-        let key = VariantKey {
-            param: f.param.clone(),
-            integrator: f.integrator.clone(),
-            formulation: f.formulation.clone(),
-        };
-        fits.insert((&f.case, &f.scene, key), f);
+        fits.insert((&f.key.case, &f.key.scene, VariantKey::of(&f.key)), f);
     }
     let mut names: Vec<&str> = cases
         .iter()
@@ -302,7 +297,7 @@ pub fn case_views<'a>(summary: &'a Summary, cases: &'a [Case]) -> Vec<CaseView<'
                     summary
                         .fits
                         .iter()
-                        .find(|f| f.case == name)
+                        .find(|f| f.key.case == name)
                         .map(|f| f.metric.clone())
                 })
                 .unwrap_or_else(|| "rotation_error_max".into());
@@ -330,7 +325,7 @@ fn scene_view<'a>(
         if r.status == Status::NotApplicable {
             na.push(*r);
         } else {
-            groups.entry(VariantKey::of(r)).or_default().push(*r);
+            groups.entry(VariantKey::of(&r.key)).or_default().push(*r);
         }
     }
     let variants = groups
@@ -362,8 +357,18 @@ fn scene_view<'a>(
 /// `series/` directory), else the record's own relative path under `root` or under `root`'s
 /// parent (root = the summary's directory).
 pub fn series_candidates(root: &Path, r: &Record) -> Vec<PathBuf> {
-    let id = run_id(&r.param, &r.integrator, &r.formulation, r.dt, r.tol);
-    let mut out = vec![root.join(&r.case).join(&r.scene).join(format!("{id}.json"))];
+    let id = run_id(
+        &r.key.param,
+        &r.key.integrator,
+        &r.key.formulation,
+        r.dt,
+        r.tol,
+    );
+    let mut out = vec![
+        root.join(&r.key.case)
+            .join(&r.key.scene)
+            .join(format!("{id}.json")),
+    ];
     if let Some(rel) = &r.series {
         out.push(root.join(rel));
         if let Some(parent) = root.parent() {

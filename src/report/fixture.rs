@@ -89,11 +89,7 @@ fn record(
 ) -> Record {
     let (dt, tl) = if tol { (None, value) } else { (value, None) };
     Record {
-        case: CASE.into(),
-        scene: scene.into(),
-        param: param.into(),
-        integrator: integ.into(),
-        formulation: form.into(),
+        key: crate::summary::RunKey::new(CASE, scene, param, integ, form),
         dt,
         tol: tl,
         status: Status::NotApplicable,
@@ -134,7 +130,13 @@ fn ok(scene: &str, s: &Spec, i: usize) -> Record {
         min: s.6[i],
         median: s.6[i] * 1.1,
     });
-    let id = run_id(&r.param, &r.integrator, &r.formulation, r.dt, r.tol);
+    let id = run_id(
+        &r.key.param,
+        &r.key.integrator,
+        &r.key.formulation,
+        r.dt,
+        r.tol,
+    );
     r.series = Some(format!("series/{CASE}/{scene}/{id}.json"));
     r
 }
@@ -150,11 +152,7 @@ pub fn summary() -> Summary {
             }
             if s.1 != "dopri5" {
                 fits.push(FitRecord {
-                    case: CASE.into(),
-                    scene: scene.into(),
-                    param: s.0.into(),
-                    integrator: s.1.into(),
-                    formulation: s.2.into(),
+                    key: crate::summary::RunKey::new(CASE, scene, s.0, s.1, s.2),
                     metric: PRIMARY.into(),
                     order: Some(if s.1 == "rk4" { 4.0 } else { 2.0 }),
                     reason: None,
@@ -195,11 +193,7 @@ pub fn summary() -> Summary {
             records.push(r);
         }
         fits.push(FitRecord {
-            case: CASE.into(),
-            scene: scene.into(),
-            param: "euler_zxz".into(),
-            integrator: "rk4".into(),
-            formulation: "body".into(),
+            key: crate::summary::RunKey::new(CASE, scene, "euler_zxz", "rk4", "body"),
             metric: PRIMARY.into(),
             order: None,
             reason: Some("0 of 3 ladder points lie in range".into()),
@@ -268,15 +262,24 @@ pub fn write_series(root: &Path, s: &Summary, skip: impl Fn(&Record) -> bool) {
             energy: t.iter().map(|x| 1000.0 + scale * x).collect(),
             constraint: t
                 .iter()
-                .map(|x| (r.param != "euler_zxz").then_some(1e-16 * (1.0 + x)))
+                .map(|x| (r.key.param != "euler_zxz").then_some(1e-16 * (1.0 + x)))
                 .collect(),
             conditioning: vec![1.0; n],
             primary_error: Some(t.iter().map(|x| scale * x / 10.0).collect()),
             primary_metric: PRIMARY.into(),
             t,
         };
-        let id = run_id(&r.param, &r.integrator, &r.formulation, r.dt, r.tol);
-        let p = root.join(&r.case).join(&r.scene).join(format!("{id}.json"));
+        let id = run_id(
+            &r.key.param,
+            &r.key.integrator,
+            &r.key.formulation,
+            r.dt,
+            r.tol,
+        );
+        let p = root
+            .join(&r.key.case)
+            .join(&r.key.scene)
+            .join(format!("{id}.json"));
         crate::reference::write_atomic(&p, serde_json::to_string(&series).unwrap().as_bytes())
             .unwrap();
     }

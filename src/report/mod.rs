@@ -418,7 +418,7 @@ mod tests {
         assert!(sec.contains("no series file"));
         assert!(sec.contains("written on SO(3) x R^3 (chart so3) only"));
         // Only one scene's series present: that scene's time series are drawn.
-        fixture::write_series(&dir.join("series"), &s, |r| r.scene == "large");
+        fixture::write_series(&dir.join("series"), &s, |r| r.key.scene == "large");
         let files = write_report(&s, &dir.join("series"), &[], None, None, &out).unwrap();
         let html = std::fs::read_to_string(&files.index_html).unwrap();
         assert_eq!(
@@ -440,11 +440,7 @@ mod tests {
 
     fn gate(scene: &str, dt: f64, metric: &str, verdict: Verdict) -> GateRow {
         GateRow {
-            case: fixture::CASE.into(),
-            scene: scene.into(),
-            param: "so3".into(),
-            integrator: "rk4".into(),
-            formulation: "body".into(),
+            key: crate::summary::RunKey::new(fixture::CASE, scene, "so3", "rk4", "body"),
             dt: Some(dt),
             tol: None,
             metric: metric.into(),

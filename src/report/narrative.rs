@@ -78,9 +78,9 @@ pub fn cheapest<'a>(sv: &SceneView<'a>, primary: &str, target: f64) -> Cheapest<
 pub fn run_name(r: &Record) -> String {
     format!(
         "{} / {} / {} at {}",
-        r.param,
-        r.integrator,
-        r.formulation,
+        r.key.param,
+        r.key.integrator,
+        r.key.formulation,
         step_label(r)
     )
 }
@@ -127,7 +127,7 @@ pub fn euler_cost<'a>(cv: &CaseView<'a>) -> Option<EulerCost<'a>> {
 /// The Euler-chart run with the lowest `conditioning_min`.
 pub fn min_conditioning<'a>(cv: &CaseView<'a>) -> Option<(&'a Record, f64)> {
     cv.runs()
-        .filter(|r| r.param.starts_with("euler_"))
+        .filter(|r| r.key.param.starts_with("euler_"))
         .filter_map(|r| {
             r.metrics
                 .get("conditioning_min")
@@ -218,8 +218,8 @@ fn failure_sentence(cv: &CaseView) -> String {
             .unwrap_or_else(|| "unknown".into());
         let e = by_kind.entry(kind).or_default();
         e.0 += 1;
-        e.1.push(r.param.clone());
-        e.2.push(r.integrator.clone());
+        e.1.push(r.key.param.clone());
+        e.2.push(r.key.integrator.clone());
     }
     let failed: usize = by_kind.values().map(|e| e.0).sum();
     if failed == 0 {
@@ -249,14 +249,14 @@ fn euler_sentences(cv: &CaseView) -> Vec<String> {
     let mut out = vec![];
     let euler: Vec<&Record> = cv
         .runs()
-        .filter(|r| r.param.starts_with("euler_"))
+        .filter(|r| r.key.param.starts_with("euler_"))
         .collect();
     if euler.is_empty() {
         return out;
     }
     let other: Vec<&Record> = cv
         .runs()
-        .filter(|r| !r.param.starts_with("euler_"))
+        .filter(|r| !r.key.param.starts_with("euler_"))
         .collect();
     let ef = euler.iter().filter(|r| r.status == Status::Failed).count();
     let of = other.iter().filter(|r| r.status == Status::Failed).count();
@@ -270,7 +270,7 @@ fn euler_sentences(cv: &CaseView) -> Vec<String> {
             "; their lowest conditioning was {} ({} on scene {})",
             num(c),
             run_name(r),
-            r.scene
+            r.key.scene
         ));
     }
     s.push('.');
@@ -281,7 +281,7 @@ fn euler_sentences(cv: &CaseView) -> Vec<String> {
              evaluations of the same method on so3: {} on scene {} took {} against {}.",
             ratio(e.ratio),
             run_name(e.euler),
-            e.euler.scene,
+            e.euler.key.scene,
             e.euler.stats.rhs_evals,
             e.so3.stats.rhs_evals
         ));
@@ -387,7 +387,7 @@ mod tests {
             let qualifying: Vec<&Record> = s
                 .records
                 .iter()
-                .filter(|r| r.scene == scene && r.status == Status::Ok)
+                .filter(|r| r.key.scene == scene && r.status == Status::Ok)
                 .filter(|r| r.metrics[fixture::PRIMARY].is_some_and(|e| e <= TARGET))
                 .collect();
             let by_rhs = qualifying.iter().min_by_key(|r| r.stats.rhs_evals).unwrap();

@@ -233,11 +233,11 @@ fn gates_of<'g>(r: &Record, gates: &'g [GateRow]) -> Vec<&'g GateRow> {
     gates
         .iter()
         .filter(|g| {
-            g.case == r.case
-                && g.scene == r.scene
-                && g.param == r.param
-                && g.integrator == r.integrator
-                && g.formulation == r.formulation
+            g.key.case == r.key.case
+                && g.key.scene == r.key.scene
+                && g.key.param == r.key.param
+                && g.key.integrator == r.key.integrator
+                && g.key.formulation == r.key.formulation
                 && same_value(g.dt, r.dt)
                 && same_value(g.tol, r.tol)
         })
@@ -374,7 +374,7 @@ pub fn gate_table(cv: &CaseView, gates: Option<&[GateRow]>) -> Option<Table> {
     let gates = gates?;
     let rows: Vec<Vec<Cell>> = gates
         .iter()
-        .filter(|g| g.case == cv.name)
+        .filter(|g| g.key.case == cv.name)
         .map(|g| {
             let step = match (g.dt, g.tol) {
                 (Some(h), _) => format!("dt {}", num(h)),
@@ -386,10 +386,10 @@ pub fn gate_table(cv: &CaseView, gates: Option<&[GateRow]>) -> Option<Table> {
                 Verdict::Fail => Tone::Fail,
             };
             vec![
-                Cell::plain(&g.scene),
-                Cell::plain(&g.param),
-                Cell::plain(&g.integrator),
-                Cell::plain(&g.formulation),
+                Cell::plain(&g.key.scene),
+                Cell::plain(&g.key.param),
+                Cell::plain(&g.key.integrator),
+                Cell::plain(&g.key.formulation),
                 Cell::plain(step),
                 Cell::plain(&g.metric),
                 Cell::plain(opt(g.value)),
@@ -441,11 +441,11 @@ pub fn not_applicable(cv: &CaseView) -> Table {
                 .entry(r.reason.clone().unwrap_or_else(|| "no reason given".into()))
                 .or_default();
             e.0 += 1;
-            if !e.1.contains(&r.param) {
-                e.1.push(r.param.clone());
+            if !e.1.contains(&r.key.param) {
+                e.1.push(r.key.param.clone());
             }
-            if !e.2.contains(&r.integrator) {
-                e.2.push(r.integrator.clone());
+            if !e.2.contains(&r.key.integrator) {
+                e.2.push(r.key.integrator.clone());
             }
         }
     }

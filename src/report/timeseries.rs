@@ -37,22 +37,10 @@ pub fn plots(cv: &CaseView, sv: &SceneView, series_root: &Path, footer: &str) ->
     out
 }
 
-/// The relative energy drift of a series.
+/// The relative energy drift of a series (`metrics::energy_drift::relative`; a case the
+/// report does not know has no scale).
 pub fn energy_drift(energy: &[f64], energy_scale: Option<f64>) -> Vec<f64> {
-    let Some(&e0) = energy.first() else {
-        return vec![];
-    };
-    let denom = e0.abs().max(energy_scale.unwrap_or(0.0));
-    energy
-        .iter()
-        .map(|e| {
-            if denom > 0.0 {
-                (e - e0).abs() / denom
-            } else {
-                (e - e0).abs()
-            }
-        })
-        .collect()
+    crate::metrics::energy_drift::relative(energy, energy_scale.unwrap_or(0.0)).collect()
 }
 
 /// One time-series plot.

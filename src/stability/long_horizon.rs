@@ -36,17 +36,16 @@
 /// and initial state).
 pub const FAMILIES: &[&str] = &["rigid_body"];
 use rayon::prelude::*;
-use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Instant;
 
 use super::{Part, StudyOptions};
 use crate::case::Case;
-use crate::integrate::{Failure, FailureKind, Limits};
+use crate::integrate::Limits;
 use crate::model::rigid_body::registry::{self, Setup, Variant};
 use crate::run::{Observe, RunOutput};
 use crate::suite::VariantFilter;
-use crate::summary::{self, FitRecord, Record, Status, Wall};
+use crate::summary::{self, FitRecord, Record, RunKey, Wall};
 
 /// Number of log-spaced observation times.
 pub const SAMPLES: usize = 200;
@@ -213,15 +212,10 @@ pub fn errors(
     let Some(first) = out.samples.first() else {
         return (vec![], vec![], None);
     };
-    let e0 = body.energy(&first.obs);
-    let scale = e0.abs().max(energy_scale);
     let (l0, nl, norm0) = body.conserved_momenta(&first.obs);
     let t = out.samples.iter().map(|s| s.t).collect();
-    let ee = out
-        .samples
-        .iter()
-        .map(|s| (body.energy(&s.obs) - e0).abs() / scale)
-        .collect();
+    let e: Vec<f64> = out.samples.iter().map(|s| body.energy(&s.obs)).collect();
+    let ee = crate::metrics::energy_drift::relative(&e, energy_scale).collect();
     let el = (nl > 0).then(|| {
         out.samples
             .iter()
@@ -254,25 +248,12 @@ struct Done {
 }
 
 fn record(job: &Job, param: &str, integrator: &str, formulation: &str) -> Record {
-    Record {
-        case: job.case.clone(),
-        scene: job.scene.clone(),
-        param: param.into(),
-        integrator: integrator.into(),
-        formulation: formulation.into(),
-        dt: Some(job.dt),
-        tol: None,
-        status: Status::NotApplicable,
-        failure: None,
-        reason: None,
-        metrics: BTreeMap::new(),
-        metric_reasons: BTreeMap::new(),
-        stats: Default::default(),
-        wall_s: None,
-        inputs_sha256: job.inputs_sha256.clone(),
-        reference_sha256: None,
-        series: None,
-    }
+    let mut r = Record::new(
+        RunKey::new(&job.case, &job.scene, param, integrator, formulation),
+        &job.inputs_sha256,
+    );
+    r.dt = Some(job.dt);
+    r
 }
 
 /// Runs one job and scores it.
@@ -287,8 +268,7 @@ fn run_job(job: &Job) -> Done {
     let out = match out {
         Ok(o) => o,
         Err(msg) => {
-            rec.status = Status::Failed;
-            rec.failure = Some(Failure::new(FailureKind::WorkLimit, 0.0, msg));
+            rec.refuse(msg);
             return Done {
                 record: rec,
                 fits: vec![],
@@ -300,13 +280,7 @@ fn run_job(job: &Job) -> Done {
         min: wall,
         median: wall,
     });
-    rec.stats = out.stats;
-    rec.status = if out.failure.is_some() {
-        Status::Failed
-    } else {
-        Status::Ok
-    };
-    rec.failure = out.failure.clone();
+    rec.take_run(out.stats, out.failure.clone());
     let body = &job.setup.body;
     let (t, ee, el) = errors(&out, body, job.energy_scale);
     let mut fits = vec![];
@@ -336,11 +310,13 @@ fn run_job(job: &Job) -> Done {
             rec.metric_reasons.insert(exp_name, why.clone());
         }
         fits.push(FitRecord {
-            case: job.case.clone(),
-            scene: job.scene.clone(),
-            param: v.param.into(),
-            integrator: v.integrator.into(),
-            formulation: v.formulation.into(),
+            key: crate::summary::RunKey::new(
+                &job.case,
+                &job.scene,
+                v.param,
+                v.integrator,
+                v.formulation,
+            ),
             metric: fit_metric.into(),
             order,
             reason,
@@ -451,11 +427,11 @@ pub fn study(cases: &[Case], filter: &VariantFilter, opts: &StudyOptions) -> Res
                     let r = &d.record;
                     eprintln!(
                         "  long_horizon {}/{} {}/{}/{} {} steps: {:.1} s",
-                        r.case,
-                        r.scene,
-                        r.param,
-                        r.integrator,
-                        r.formulation,
+                        r.key.case,
+                        r.key.scene,
+                        r.key.param,
+                        r.key.integrator,
+                        r.key.formulation,
                         jobs[i].steps,
                         r.wall_s.map(|w| w.min).unwrap_or(f64::NAN)
                     );
@@ -556,7 +532,7 @@ mod tests {
             let r = part
                 .records
                 .iter()
-                .find(|r| r.case == case && r.integrator == integ)
+                .find(|r| r.key.case == case && r.key.integrator == integ)
                 .unwrap();
             assert_eq!(r.metrics["long_horizon_steps"], Some(STEPS_QUICK as f64));
             assert!(
@@ -608,9 +584,9 @@ mod tests {
             let m = |k: &str| r.metrics.get(k).copied().flatten().unwrap_or(f64::NAN);
             eprintln!(
                 "{:<10} {:<10} {:<24} {:>9.0} steps  E p={:>6.3} fin={:>9.2e}  L p={:>6.3} fin={:>9.2e}  {:>7.2} s {:?}",
-                r.case,
-                r.param,
-                r.integrator,
+                r.key.case,
+                r.key.param,
+                r.key.integrator,
                 m("long_horizon_steps"),
                 m("energy_growth_exponent"),
                 m("energy_error_final"),

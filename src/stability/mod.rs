@@ -284,8 +284,8 @@ fn write_study(all: Part, opts: &StudyOptions) -> Result<crate::summary::Summary
 /// steps first, unlike the summary's report order).
 fn record_order(r: &Record) -> (String, String, [usize; 3], u64, u64) {
     (
-        r.case.clone(),
-        r.scene.clone(),
+        r.key.case.clone(),
+        r.key.scene.clone(),
         r.variant_order(),
         r.dt.map(f64::to_bits).unwrap_or(0),
         r.tol.map(f64::to_bits).unwrap_or(0),
@@ -306,13 +306,13 @@ pub fn print_table(
             .find(|m| r.metrics.contains_key(*m));
         let Some(sm) = stable else { continue };
         let am = sm.replace("stable", "accurate");
-        if (r.case.clone(), r.scene.clone()) != scene {
-            scene = (r.case.clone(), r.scene.clone());
+        if (r.key.case.clone(), r.key.scene.clone()) != scene {
+            scene = (r.key.case.clone(), r.key.scene.clone());
             writeln!(
                 out,
                 "\n{}/{} (t_h = {} s)\n  {:<12} {:<18} {:<8} {:>10} {:>10}  limited by (stable)",
-                r.case,
-                r.scene,
+                r.key.case,
+                r.key.scene,
                 num(r.metrics.get("stability_horizon").copied().flatten()).trim(),
                 "param",
                 "integrator",
@@ -326,9 +326,9 @@ pub fn print_table(
         writeln!(
             out,
             "  {:<12} {:<18} {:<8} {} {}  {}",
-            r.param,
-            r.integrator,
-            r.formulation,
+            r.key.param,
+            r.key.integrator,
+            r.key.formulation,
             num(r.metrics.get(sm).copied().flatten()),
             num(r.metrics.get(am.as_str()).copied().flatten()),
             short
@@ -340,10 +340,10 @@ pub fn print_table(
             writeln!(
                 out,
                 "  {:<24} {:<12} {:<18} {:<8} {:<36} {}",
-                f.scene,
-                f.param,
-                f.integrator,
-                f.formulation,
+                f.key.scene,
+                f.key.param,
+                f.key.integrator,
+                f.key.formulation,
                 f.metric,
                 f.order.map_or_else(
                     || format!("- ({})", f.reason.as_deref().unwrap_or("")),

@@ -614,11 +614,13 @@ pub fn record(v: &Variant, scene: &StudyScene, stable: &Found, accurate: &Found)
     metrics.insert("stability_horizon".into(), Some(scene.horizon));
     metrics.insert("fastest_period".into(), Some(scene.period));
     Record {
-        case: scene.plan.case.clone(),
-        scene: scene.plan.scene.clone(),
-        param: v.param.into(),
-        integrator: v.integrator.into(),
-        formulation: v.formulation.into(),
+        key: crate::summary::RunKey::new(
+            &scene.plan.case,
+            &scene.plan.scene,
+            v.param,
+            v.integrator,
+            v.formulation,
+        ),
         dt: None,
         tol: None,
         status: Status::Ok,

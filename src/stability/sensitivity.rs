@@ -214,11 +214,7 @@ fn record(
         }
     }
     let rec = Record {
-        case: plan.case.clone(),
-        scene: plan.scene.clone(),
-        param: "so3".into(),
-        integrator: "dop853".into(),
-        formulation: "body".into(),
+        key: crate::summary::RunKey::new(&plan.case, &plan.scene, "so3", "dop853", "body"),
         dt: None,
         tol: Some(TOL),
         status: Status::Ok,

@@ -177,11 +177,13 @@ fn run_one(
         }
     };
     Record {
-        case: plan.case.clone(),
-        scene: plan.scene.clone(),
-        param: v.param.into(),
-        integrator: v.integrator.into(),
-        formulation: v.formulation.into(),
+        key: crate::summary::RunKey::new(
+            &plan.case,
+            &plan.scene,
+            v.param,
+            v.integrator,
+            v.formulation,
+        ),
         dt: (!v.info.adaptive).then_some(value),
         tol: v.info.adaptive.then_some(value),
         status,
@@ -216,7 +218,9 @@ mod tests {
     fn find<'a>(p: &'a Part, k: i32, param: &str, integ: &str) -> &'a Record {
         p.records
             .iter()
-            .find(|r| r.scene == scene_name(k) && r.param == param && r.integrator == integ)
+            .find(|r| {
+                r.key.scene == scene_name(k) && r.key.param == param && r.key.integrator == integ
+            })
             .unwrap()
     }
 

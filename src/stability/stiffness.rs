@@ -24,7 +24,7 @@ use crate::case::Case;
 use crate::metrics::order::loglog_slope;
 use crate::model::rigid_body::case::RigidCase;
 use crate::suite::VariantFilter;
-use crate::summary::{FitRecord, Record};
+use crate::summary::{FitRecord, Record, RunKey};
 
 /// The case and scene the ladder is generated from.
 pub const CASE: &str = "nine_spring";
@@ -98,14 +98,15 @@ pub fn study(
     // `filter` is already the tier's (the quick tier: `super::quick_filter`).
     let own: Vec<&Record> = done
         .iter()
-        .filter(|r| r.case == CASE && r.scene == SCENE)
+        .filter(|r| r.key.case == CASE && r.key.scene == SCENE)
         .collect();
     let unit = scene_name(0, false);
     let mut part = if !own.is_empty() && periods.first().is_some_and(|s| s.plan.scene == unit) {
         let mut p = step_search(&periods[1..], filter, opts, "stiffness")?;
-        p.records.extend(own.into_iter().map(|r| Record {
-            scene: unit.clone(),
-            ..r.clone()
+        p.records.extend(own.into_iter().map(|r| {
+            let mut r = r.clone();
+            r.key.scene = unit.clone();
+            r
         }));
         p
     } else {
@@ -130,9 +131,9 @@ pub fn fits(records: &[Record], exps: &[i32]) -> Vec<FitRecord> {
         .iter()
         .map(|r| {
             (
-                r.param.as_str(),
-                r.integrator.as_str(),
-                r.formulation.as_str(),
+                r.key.param.as_str(),
+                r.key.integrator.as_str(),
+                r.key.formulation.as_str(),
             )
         })
         .collect();
@@ -148,10 +149,10 @@ pub fn fits(records: &[Record], exps: &[i32]) -> Vec<FitRecord> {
                     records
                         .iter()
                         .find(|r| {
-                            r.scene == name
-                                && r.param == param
-                                && r.integrator == integ
-                                && r.formulation == form
+                            r.key.scene == name
+                                && r.key.param == param
+                                && r.key.integrator == integ
+                                && r.key.formulation == form
                         })
                         .map(|r| (10f64.powi(j), r))
                 })
@@ -190,16 +191,13 @@ pub fn fits(records: &[Record], exps: &[i32]) -> Vec<FitRecord> {
                         )),
                     )
                 };
+                let scene = if fixed {
+                    format!("{SCENE}_stiffness_T10")
+                } else {
+                    format!("{SCENE}_stiffness")
+                };
                 out.push(FitRecord {
-                    case: CASE.into(),
-                    scene: if fixed {
-                        format!("{SCENE}_stiffness_T10")
-                    } else {
-                        format!("{SCENE}_stiffness")
-                    },
-                    param: param.into(),
-                    integrator: integ.into(),
-                    formulation: form.into(),
+                    key: RunKey::new(CASE, &scene, param, integ, form),
                     metric: format!("{metric}_vs_stiffness"),
                     order,
                     reason,

@@ -78,10 +78,10 @@ pub fn index(s: &Summary) -> BTreeMap<(String, String, String, String, u64), Rec
         .map(|r| {
             (
                 (
-                    r.scene.clone(),
-                    r.param.clone(),
-                    r.integrator.clone(),
-                    r.formulation.clone(),
+                    r.key.scene.clone(),
+                    r.key.param.clone(),
+                    r.key.integrator.clone(),
+                    r.key.formulation.clone(),
                     r.dt.or(r.tol).unwrap().to_bits(),
                 ),
                 r.clone(),
@@ -102,10 +102,10 @@ pub fn get<'a>(
     s.records
         .iter()
         .find(|r| {
-            r.scene == scene
-                && r.param == param
-                && r.integrator == integrator
-                && r.formulation == formulation
+            r.key.scene == scene
+                && r.key.param == param
+                && r.key.integrator == integrator
+                && r.key.formulation == formulation
                 && r.dt.or(r.tol) == Some(value)
         })
         .unwrap_or_else(|| panic!("no record {scene}/{param}/{integrator}/{formulation}/{value}"))

@@ -127,20 +127,7 @@ pub fn primary_track(p: &Primary, plan: &ScenePlan) -> Result<Track, String> {
             let o = setup.initial;
             let r0 = o.q.to_rotation_matrix().into_inner();
             let w = r0 * o.omega;
-            let t = score_times(&setup.grid)?;
-            let obs = t
-                .iter()
-                .map(|&t| {
-                    let (q, omega) = spin_exact(w, r0, t);
-                    Observation {
-                        q,
-                        x: o.x + o.v * t,
-                        v: o.v,
-                        omega,
-                    }
-                })
-                .collect();
-            Ok(Track { t, obs })
+            exact_track(setup, |t| spin_exact(w, r0, t))
         }
         Primary::EllipticTorqueFree => {
             let o = setup.initial;
@@ -148,22 +135,32 @@ pub fn primary_track(p: &Primary, plan: &ScenePlan) -> Result<Track, String> {
             let r0 = o.q.to_rotation_matrix().into_inner();
             let exact =
                 TorqueFreeExact::new(Vector3::new(j[(0, 0)], j[(1, 1)], j[(2, 2)]), o.omega, r0)?;
-            let t = score_times(&setup.grid)?;
-            let obs = t
-                .iter()
-                .map(|&t| {
-                    let (q, omega) = exact.at(t);
-                    Observation {
-                        q,
-                        x: o.x + o.v * t,
-                        v: o.v,
-                        omega,
-                    }
-                })
-                .collect();
-            Ok(Track { t, obs })
+            exact_track(setup, |t| exact.at(t))
         }
     }
+}
+
+/// The track of a torque-free body at the score times: the attitude and body angular
+/// velocity from `rotation(t)`, the centre of mass in uniform motion.
+fn exact_track(
+    setup: &Setup,
+    rotation: impl Fn(f64) -> (UnitQuaternion<f64>, Vector3<f64>),
+) -> Result<Track, String> {
+    let o = setup.initial;
+    let t = score_times(&setup.grid)?;
+    let obs = t
+        .iter()
+        .map(|&t| {
+            let (q, omega) = rotation(t);
+            Observation {
+                q,
+                x: o.x + o.v * t,
+                v: o.v,
+                omega,
+            }
+        })
+        .collect();
+    Ok(Track { t, obs })
 }
 
 /// Tolerance of the cross-check of a numerical reference: `dop853` on `quat_proj`, spatial
@@ -220,12 +217,8 @@ pub fn max_diffs(a: &Track, b: &Track) -> Result<[f64; 4], String> {
 }
 
 fn energy_drift(body: &RigidBody, tr: &Track, scale: f64) -> f64 {
-    let e0 = body.energy(&tr.obs[0]);
-    let s = e0.abs().max(scale);
-    tr.obs
-        .iter()
-        .map(|o| (body.energy(o) - e0).abs() / s)
-        .fold(0.0, f64::max)
+    let e: Vec<f64> = tr.obs.iter().map(|o| body.energy(o)).collect();
+    crate::metrics::energy_drift::max_relative(&e, scale)
 }
 
 fn method_name(p: &Primary) -> (String, Option<f64>) {

@@ -294,11 +294,7 @@ impl Problem for ChainProblem {
         let cross_obs: Vec<ChainObs> = cross.scored().map(|s| s.obs).collect();
         let d = max_diffs(&exact, &cross_obs)?;
         let energy: Vec<f64> = exact.iter().map(|o| self.setup.chain.energy(o)).collect();
-        let e0 = energy[0];
-        let drift = energy
-            .iter()
-            .map(|e| (e - e0).abs() / e0.abs().max(self.energy_scale))
-            .fold(0.0, f64::max);
+        let drift = energy_drift::max_relative(&energy, self.energy_scale);
         let r = ChainReference {
             case: self.case.clone(),
             scene: self.scene.clone(),

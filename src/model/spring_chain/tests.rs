@@ -89,7 +89,7 @@ fn end_to_end_through_the_command_line() {
     assert_eq!(s.records.len(), 2 * (4 * 2 + 4 * 2 + 3 * 2));
     assert!(s.records.iter().all(|r| r.status == Status::Ok));
     for f in &s.fits {
-        let want = if f.integrator == "rk4" { 4.0 } else { 2.0 };
+        let want = if f.key.integrator == "rk4" { 4.0 } else { 2.0 };
         let order = f.order.unwrap_or(f64::NAN);
         assert!((order - want).abs() <= 0.1, "{f:?}");
     }

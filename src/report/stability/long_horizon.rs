@@ -8,15 +8,21 @@ use super::*;
 pub(super) type LongSeries = (Vec<f64>, Vec<f64>, Option<Vec<f64>>);
 
 pub(super) fn load_long_series(dir: &Path, r: &Record) -> Option<LongSeries> {
-    let id = crate::summary::run_id(&r.param, &r.integrator, &r.formulation, r.dt, r.tol);
+    let id = crate::summary::run_id(
+        &r.key.param,
+        &r.key.integrator,
+        &r.key.formulation,
+        r.dt,
+        r.tol,
+    );
     let mut candidates = vec![];
     if let Some(rel) = &r.series {
         candidates.push(dir.join(rel));
     }
     candidates.push(
         dir.join("series/long_horizon")
-            .join(&r.case)
-            .join(&r.scene)
+            .join(&r.key.case)
+            .join(&r.key.scene)
             .join(format!("{id}.json")),
     );
     let v: serde_json::Value = candidates.iter().find_map(|p| {
@@ -63,7 +69,7 @@ pub(super) fn long_plots(
         let mut missing = vec![];
         let mut steps: BTreeSet<String> = BTreeSet::new();
         for (r, s) in &loaded {
-            let key = VariantKey::of(r);
+            let key = VariantKey::of(&r.key);
             if (!momentum || r.metrics.contains_key(metric))
                 && let Some(n) = r.metrics.get("long_horizon_steps").copied().flatten()
             {
@@ -138,8 +144,8 @@ pub(super) fn long_table(case: &str, rs: &[&Record]) -> Table {
     let rows = rs
         .iter()
         .map(|r| {
-            let mut row = variant_cells(&VariantKey::of(r)).to_vec();
-            row.insert(0, Cell::plain(&r.scene));
+            let mut row = variant_cells(&VariantKey::of(&r.key)).to_vec();
+            row.insert(0, Cell::plain(&r.key.scene));
             row.push(Cell::plain(r.dt.map(num).unwrap_or_else(|| "-".into())));
             row.push(
                 match r.metrics.get("long_horizon_steps").copied().flatten() {

@@ -132,22 +132,14 @@ pub fn case_names(s: &Summary) -> Vec<String> {
     for c in s
         .records
         .iter()
-        .map(|r| &r.case)
-        .chain(s.fits.iter().map(|f| &f.case))
+        .map(|r| &r.key.case)
+        .chain(s.fits.iter().map(|f| &f.key.case))
     {
         if !out.contains(c) {
             out.push(c.clone());
         }
     }
     out
-}
-
-fn key_of_fit(f: &FitRecord) -> VariantKey {
-    VariantKey {
-        param: f.param.clone(),
-        integrator: f.integrator.clone(),
-        formulation: f.formulation.clone(),
-    }
 }
 
 /// The stable-step metric of a step-search record.
@@ -336,8 +328,8 @@ pub fn section(
     footer: &str,
 ) -> Option<StabilitySection> {
     let s = src.summary;
-    let records: Vec<&Record> = s.records.iter().filter(|r| r.case == name).collect();
-    let fits: Vec<&FitRecord> = s.fits.iter().filter(|f| f.case == name).collect();
+    let records: Vec<&Record> = s.records.iter().filter(|r| r.key.case == name).collect();
+    let fits: Vec<&FitRecord> = s.fits.iter().filter(|f| f.key.case == name).collect();
     if records.is_empty() && fits.is_empty() {
         return None;
     }
@@ -373,7 +365,7 @@ pub fn section(
              tried, t_h / 20, passed: a lower bound, no limit was found."
                 .to_string(),
         );
-        if search.iter().any(|r| r.integrator == "euler") {
+        if search.iter().any(|r| r.key.integrator == "euler") {
             text.push(EULER_NOTE.to_string());
         }
         text.extend(search_facts(&search, case));
@@ -413,7 +405,7 @@ pub fn section(
                 let h = r.metrics.get("predictable_horizon").copied().flatten()?;
                 Some(format!(
                     "{} {}x (predictable to t = {} s)",
-                    r.scene,
+                    r.key.scene,
                     plain(g),
                     plain(h)
                 ))
@@ -430,13 +422,13 @@ pub fn section(
         ));
     }
 
-    let steps = ordered_scenes(search.iter().map(|r| r.scene.as_str()), case)
+    let steps = ordered_scenes(search.iter().map(|r| r.key.scene.as_str()), case)
         .into_iter()
         .map(|scene| {
             let rs: Vec<&Record> = search
                 .iter()
                 .copied()
-                .filter(|r| r.scene == scene)
+                .filter(|r| r.key.scene == scene)
                 .collect();
             StepTable {
                 open: case.is_none() || in_case_file(case, &scene),
@@ -450,12 +442,12 @@ pub fn section(
         .collect();
     let mut long_figs = vec![];
     let mut long_sorted = long.clone();
-    long_sorted.sort_by_key(|r| VariantKey::of(r));
-    for scene in ordered_scenes(long.iter().map(|r| r.scene.as_str()), case) {
+    long_sorted.sort_by_key(|r| VariantKey::of(&r.key));
+    for scene in ordered_scenes(long.iter().map(|r| r.key.scene.as_str()), case) {
         let rs: Vec<&Record> = long_sorted
             .iter()
             .copied()
-            .filter(|r| r.scene == scene)
+            .filter(|r| r.key.scene == scene)
             .collect();
         long_figs.extend(
             long_plots(name, &scene, &rs, src.dir, footer)

@@ -11,8 +11,8 @@ pub(super) fn other_table(case: &str, rs: &[&Record]) -> Table {
     let rows = rs
         .iter()
         .map(|r| {
-            let mut row = vec![Cell::plain(&r.scene)];
-            row.extend(variant_cells(&VariantKey::of(r)));
+            let mut row = vec![Cell::plain(&r.key.scene)];
+            row.extend(variant_cells(&VariantKey::of(&r.key)));
             row.push(Cell::plain(crate::report::data::step_label(r)));
             row.push(status_cell(r));
             row.extend(metrics.iter().map(|m| metric_text(r, m)));
@@ -47,8 +47,8 @@ pub(super) fn other_fits_table(case: &str, fs: &[&FitRecord]) -> Table {
     let rows = fs
         .iter()
         .map(|f| {
-            let mut row = vec![Cell::plain(&f.scene)];
-            row.extend(variant_cells(&key_of_fit(f)));
+            let mut row = vec![Cell::plain(&f.key.scene)];
+            row.extend(variant_cells(&VariantKey::of(&f.key)));
             row.push(Cell::plain(&f.metric));
             row.push(Cell::plain(
                 f.order.map(|p| decimals(p, 3)).unwrap_or("null".into()),

@@ -7,13 +7,13 @@ use super::*;
 pub(super) fn step_table(case: &str, scene: &str, records: &[&Record]) -> Table {
     let mut rows = vec![];
     let mut rs: Vec<&Record> = records.to_vec();
-    rs.sort_by_key(|r| VariantKey::of(r));
+    rs.sort_by_key(|r| VariantKey::of(&r.key));
     let mut horizons: Vec<f64> = vec![];
     for r in rs {
         let Some(sm) = stable_metric(r) else { continue };
         let am = sm.replace("stable", "accurate");
         let adaptive = sm.ends_with("_tol");
-        let mut row: Vec<Cell> = variant_cells(&VariantKey::of(r)).to_vec();
+        let mut row: Vec<Cell> = variant_cells(&VariantKey::of(&r.key)).to_vec();
         for m in [sm, am.as_str()] {
             let why = r.metric_reasons.get(m).map(String::as_str).unwrap_or("");
             row.push(step_cell(
@@ -67,7 +67,7 @@ pub(super) fn search_facts(search: &[&Record], case: Option<&Case>) -> Vec<Strin
     let own: Vec<&Record> = search
         .iter()
         .copied()
-        .filter(|r| case.is_none() || in_case_file(case, &r.scene))
+        .filter(|r| case.is_none() || in_case_file(case, &r.key.scene))
         .collect();
     let mut out = vec![];
     let mut by_variant: BTreeMap<VariantKey, Vec<bool>> = BTreeMap::new();
@@ -75,7 +75,7 @@ pub(super) fn search_facts(search: &[&Record], case: Option<&Case>) -> Vec<Strin
         let Some(sm) = stable_metric(r) else { continue };
         let why = r.metric_reasons.get(sm).map(String::as_str).unwrap_or("");
         by_variant
-            .entry(VariantKey::of(r))
+            .entry(VariantKey::of(&r.key))
             .or_default()
             .push(capped(why));
     }
@@ -103,8 +103,8 @@ pub(super) fn search_facts(search: &[&Record], case: Option<&Case>) -> Vec<Strin
     if let Some((_, v, r, sm)) = smallest {
         out.push(format!(
             "The most restrictive stable step is {} in {} at dt {} ({}).",
-            VariantKey::of(r).label(),
-            r.scene,
+            VariantKey::of(&r.key).label(),
+            r.key.scene,
             num(v),
             short_reason(r.metric_reasons.get(sm).map(String::as_str).unwrap_or(""))
         ));

@@ -31,7 +31,7 @@ pub(super) fn sensitivity_plot(
     let mut missing = vec![];
     for r in &rs {
         let Some(points) = load_growth(dir, r) else {
-            missing.push(r.scene.clone());
+            missing.push(r.key.scene.clone());
             continue;
         };
         let points: Vec<(f64, f64)> = points.into_iter().filter(|p| p.1 > 0.0).collect();
@@ -40,13 +40,13 @@ pub(super) fn sensitivity_plot(
         lines.push(Line {
             key: VariantKey {
                 param: "so3".into(),
-                integrator: r.scene.clone(),
+                integrator: r.key.scene.clone(),
                 formulation: "body".into(),
             },
             points,
             label: Some(match horizon {
-                Some(h) => format!("{} (predictable to t = {})", r.scene, num(h)),
-                None => r.scene.clone(),
+                Some(h) => format!("{} (predictable to t = {})", r.key.scene, num(h)),
+                None => r.key.scene.clone(),
             }),
             marker_every: (n / 8).max(1),
         });

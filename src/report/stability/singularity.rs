@@ -33,16 +33,16 @@ pub(super) fn singularity_groups<'a>(
         let value = crate::report::data::step_of(r).unwrap_or(f64::NAN);
         // Coarse steps and loose tolerances first: larger values sort first.
         groups
-            .entry((r.tol.is_some(), r.integrator.clone(), !value.to_bits()))
+            .entry((r.tol.is_some(), r.key.integrator.clone(), !value.to_bits()))
             .or_default()
             .push(r);
     }
     groups
         .into_values()
         .map(|mut v| {
-            v.sort_by_key(|r| VariantKey::of(r));
+            v.sort_by_key(|r| VariantKey::of(&r.key));
             let label = (
-                v[0].integrator.clone(),
+                v[0].key.integrator.clone(),
                 crate::report::data::step_label(v[0]),
             );
             (label, v)
@@ -67,7 +67,7 @@ pub(super) fn singularity_plots(case: &str, rs: &[&Record], footer: &str) -> Vec
             let mut undrawn: BTreeSet<String> = BTreeSet::new();
             let mut failed: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
             for r in &group {
-                let key = VariantKey::of(r);
+                let key = VariantKey::of(&r.key);
                 let Some(d) = r.metrics.get("approach_distance").copied().flatten() else {
                     continue;
                 };
@@ -168,7 +168,10 @@ pub(super) fn singularity_facts(rs: &[&Record]) -> Vec<String> {
             let d = r.metrics.get("approach_distance").copied().flatten();
             let e = r.metrics.get("rotation_error_max").copied().flatten();
             if let (Some(d), Some(e), Status::Ok) = (d, e, r.status) {
-                by_key.entry(VariantKey::of(r)).or_default().push((d, e));
+                by_key
+                    .entry(VariantKey::of(&r.key))
+                    .or_default()
+                    .push((d, e));
             }
         }
         for (key, mut pts) in by_key {

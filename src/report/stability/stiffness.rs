@@ -16,7 +16,7 @@ pub(super) fn ladder_records<'a>(
     records
         .iter()
         .filter_map(|r| {
-            let rest = r.scene.strip_prefix(&head)?.strip_suffix(suffix)?;
+            let rest = r.key.scene.strip_prefix(&head)?.strip_suffix(suffix)?;
             let j: i32 = rest.parse().ok()?;
             Some((10f64.powi(j), *r))
         })
@@ -35,18 +35,23 @@ pub(super) fn ladder_plots(
         let base = f.metric.trim_end_matches("_vs_stiffness").to_string();
         let accurate = usize::from(base.contains("accurate"));
         groups
-            .entry((f.scene.ends_with("_T10"), f.scene.clone(), accurate, base))
+            .entry((
+                f.key.scene.ends_with("_T10"),
+                f.key.scene.clone(),
+                accurate,
+                base,
+            ))
             .or_default()
             .push(f);
     }
     let mut out = vec![];
     for ((fixed, scene, _, metric), mut fs) in groups {
-        fs.sort_by_key(|f| key_of_fit(f));
+        fs.sort_by_key(|f| VariantKey::of(&f.key));
         let rs = ladder_records(&scene, records);
         let mut lines = vec![];
         let mut unmeasured: Vec<String> = vec![];
         for f in &fs {
-            let key = key_of_fit(f);
+            let key = VariantKey::of(&f.key);
             let slope = match f.order {
                 Some(p) => format!("slope {}", decimals(p, 2)),
                 None => "slope - (too few points)".into(),
@@ -55,7 +60,7 @@ pub(super) fn ladder_plots(
             let mut skipped: BTreeMap<String, Vec<String>> = BTreeMap::new();
             let mut mine: Vec<(f64, &Record)> = rs
                 .iter()
-                .filter(|(_, r)| VariantKey::of(r) == key)
+                .filter(|(_, r)| VariantKey::of(&r.key) == key)
                 .copied()
                 .collect();
             mine.sort_by(|a, b| a.0.total_cmp(&b.0));

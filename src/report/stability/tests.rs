@@ -5,11 +5,11 @@ use crate::summary::{Env, FitRecord, Summary, run_id};
 
 fn rec(case: &str, scene: &str, p: &str, i: &str, metrics: &[(&str, Option<f64>)]) -> Record {
     let mut r = fixture::summary().records[0].clone();
-    r.case = case.into();
-    r.scene = scene.into();
-    r.param = p.into();
-    r.integrator = i.into();
-    r.formulation = "body".into();
+    r.key.case = case.into();
+    r.key.scene = scene.into();
+    r.key.param = p.into();
+    r.key.integrator = i.into();
+    r.key.formulation = "body".into();
     r.dt = None;
     r.tol = None;
     r.status = Status::Ok;
@@ -112,11 +112,7 @@ pub fn stability_summary() -> Summary {
         &[("approach_distance", Some(1e-3))],
     ));
     let fit = |i: &str, order: Option<f64>, points: Vec<[f64; 2]>| FitRecord {
-        case: fixture::CASE.into(),
-        scene: "two_angles_stiffness".into(),
-        param: "so3".into(),
-        integrator: i.into(),
-        formulation: "body".into(),
+        key: crate::summary::RunKey::new(fixture::CASE, "two_angles_stiffness", "so3", i, "body"),
         metric: "largest_stable_dt_vs_stiffness".into(),
         order,
         reason: order.is_none().then(|| "2 of 3 stiffness factors".into()),
@@ -350,7 +346,7 @@ fn sensitivity_plot_from_series() {
     let v = serde_json::json!({"t": [0.0, 5.0, 10.0], "growth": [1.0, 30.0, 597.0]});
     std::fs::write(&p, v.to_string()).unwrap();
     let mut b = a.clone();
-    b.scene = "two_angles".into();
+    b.key.scene = "two_angles".into();
     b.series = Some("series/sensitivity/nine_spring/two_angles.json".into());
     let plot = sensitivity_plot("nine_spring", &[&a, &b], &dir, "f").unwrap();
     assert_eq!(plot.lines.len(), 1);
