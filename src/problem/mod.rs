@@ -37,6 +37,7 @@ use crate::integrate::{Failure, MethodInfo, Stats};
 use crate::metrics::Scores;
 use crate::summary::Series;
 
+pub mod figures;
 pub mod matrix;
 
 pub use crate::run::Stepping;
@@ -49,6 +50,20 @@ pub use crate::model::FAMILIES;
 /// The family a case belongs to (its `model` key, checked when the case was loaded).
 pub fn family_of(case: &Case) -> &'static Family {
     find_family(case.model).unwrap_or(FAMILIES[0])
+}
+
+/// The family whose axes name the variant `(param, integrator, formulation)` (the report of a
+/// summary whose case file was not given); the first family when none does.
+pub fn family_of_variant(param: &str, integrator: &str, formulation: &str) -> &'static Family {
+    FAMILIES
+        .iter()
+        .copied()
+        .find(|f| {
+            f.axes.params.contains(&param)
+                && f.axes.integrators.contains(&integrator)
+                && f.axes.formulations.contains(&formulation)
+        })
+        .unwrap_or(FAMILIES[0])
 }
 
 /// The family with TOML `model` key `model`.
@@ -178,6 +193,8 @@ pub struct Family {
     pub inputs: fn(&Case, &Scene) -> serde_json::Map<String, serde_json::Value>,
     /// Compiles one scene of a validated case.
     pub compile: Compile,
+    /// The family's figures in the report.
+    pub figures: &'static figures::Figures,
 }
 
 impl std::fmt::Debug for Family {

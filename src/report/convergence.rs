@@ -9,7 +9,8 @@
 //! plots). Failed runs are marked in the "failed" band at their step.
 use super::chart::{FailMark, Legend, Line, Plot};
 use super::data::{CaseView, SceneView, VariantRuns};
-use super::select::Selection;
+use super::select::{Admits, Selection};
+use crate::problem::Axis;
 use crate::summary::Status;
 
 /// The legend text of a variant: the names that vary in the selection (the title names the
@@ -20,19 +21,26 @@ pub fn order_label(v: &VariantRuns, sel: Selection) -> String {
         None => "p n/a".into(),
     };
     let k = &v.key;
-    match sel {
-        Selection::Rk4 => format!("{} {}: {p}", k.param, k.formulation),
-        Selection::So3 => format!("{} {}: {p}", k.integrator, k.formulation),
-        Selection::Adaptive => format!("{} {} {}: {p}", k.param, k.integrator, k.formulation),
-    }
+    let names: Vec<&str> = sel
+        .legend_axes
+        .iter()
+        .map(|a| match a {
+            Axis::Param => k.param.as_str(),
+            Axis::Integrator => k.integrator.as_str(),
+            Axis::Formulation => k.formulation.as_str(),
+        })
+        .collect();
+    format!("{}: {p}", names.join(" "))
 }
 
-/// The convergence plots of a scene (selections with fixed-step variants: rk4 on every chart,
-/// every fixed-step integrator on so3).
+/// The convergence plots of a scene: the fixed-step variants of each of the family's
+/// convergence selections.
 pub fn plots(cv: &CaseView, sv: &SceneView, footer: &str) -> Vec<Plot> {
-    [Selection::Rk4, Selection::So3]
-        .into_iter()
-        .map(|sel| plot(cv, sv, sel, footer))
+    cv.family
+        .figures
+        .convergence
+        .iter()
+        .map(|&sel| plot(cv, sv, sel, footer))
         .collect()
 }
 
@@ -65,13 +73,10 @@ pub fn plot(cv: &CaseView, sv: &SceneView, sel: Selection, footer: &str) -> Plot
         });
     }
     Plot {
-        id: format!("{}/conv_{}", sv.name, sel.id()),
+        id: format!("{}/conv_{}", sv.name, sel.id),
         title: format!(
             "{}/{}: {} vs step ({})",
-            cv.name,
-            sv.name,
-            cv.primary,
-            sel.short()
+            cv.name, sv.name, cv.primary, sel.short
         ),
         x_label: "step dt (s)".into(),
         y_label: cv.primary.clone(),
@@ -84,8 +89,7 @@ pub fn plot(cv: &CaseView, sv: &SceneView, sel: Selection, footer: &str) -> Plot
             "Convergence: {} against the fixed step. {} Adaptive methods are not drawn. p is \
              the observed order fitted by the suite (slope over the ladder points between 100x \
              the reference's accuracy claim and 1e-2; n/a with fewer than 3 such points).",
-            cv.primary,
-            sel.describe()
+            cv.primary, sel.describe
         ),
         footer: footer.into(),
     }

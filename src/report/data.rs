@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use crate::case::Case;
-use crate::problem::{Axis, axis_position};
+use crate::problem::{self, Axis, Family, axis_position};
 use crate::summary::{FitRecord, Record, RunKey, Series, Status, Summary, run_id};
 
 /// A variant: parameterization x integrator x formulation.
@@ -40,9 +40,13 @@ impl VariantKey {
         )
     }
 
-    /// Whether the parameterization is an Euler-angle chart.
-    pub fn is_euler(&self) -> bool {
-        self.param.starts_with("euler_")
+    /// Whether the parameterization belongs to its family's contrasted chart group (the rigid
+    /// body's Euler-angle charts; `problem::figures::ChartGroup`).
+    pub fn in_chart_group(&self) -> bool {
+        problem::family_of_variant(&self.param, &self.integrator, &self.formulation)
+            .figures
+            .chart_group
+            .is_some_and(|g| g.contains(&self.param))
     }
 
     fn rank(&self) -> (usize, &str, usize, &str, usize, &str) {
@@ -204,6 +208,8 @@ pub struct CaseView<'a> {
     pub scenes: Vec<SceneView<'a>>,
     /// The case file, when it was given.
     pub case: Option<&'a Case>,
+    /// The case's model family: its figures, names and metrics.
+    pub family: &'static Family,
 }
 
 impl<'a> CaseView<'a> {
@@ -291,6 +297,7 @@ pub fn case_views<'a>(summary: &'a Summary, cases: &'a [Case]) -> Vec<CaseView<'
                 .into_iter()
                 .map(|scene| scene_view(name, scene, &scenes_map[scene], &fits))
                 .collect();
+            let family = family_of_view(case, scenes_map.values().flatten().copied());
             let primary = case
                 .map(|c| c.primary_metric.clone())
                 .or_else(|| {
@@ -300,7 +307,7 @@ pub fn case_views<'a>(summary: &'a Summary, cases: &'a [Case]) -> Vec<CaseView<'
                         .find(|f| f.key.case == name)
                         .map(|f| f.metric.clone())
                 })
-                .unwrap_or_else(|| "rotation_error_max".into());
+                .unwrap_or_else(|| default_primary(family));
             CaseView {
                 name: name.to_string(),
                 title: case.map(|c| c.title.clone()).unwrap_or_default(),
@@ -308,9 +315,35 @@ pub fn case_views<'a>(summary: &'a Summary, cases: &'a [Case]) -> Vec<CaseView<'
                 energy_scale: case.map(|c| c.energy_scale),
                 scenes,
                 case,
+                family,
             }
         })
         .collect()
+}
+
+/// The family of a case: its case file's, else the family naming its first record's variant.
+pub fn family_of_view<'a>(
+    case: Option<&Case>,
+    mut records: impl Iterator<Item = &'a Record>,
+) -> &'static Family {
+    match (case, records.next()) {
+        (Some(c), _) => problem::family_of(c),
+        (None, Some(r)) => {
+            problem::family_of_variant(&r.key.param, &r.key.integrator, &r.key.formulation)
+        }
+        (None, None) => problem::FAMILIES[0],
+    }
+}
+
+/// The primary metric of a case whose file and fits are unknown: the family's first error
+/// against the reference.
+pub fn default_primary(family: &Family) -> String {
+    family
+        .metrics
+        .iter()
+        .find(|m| m.reference_error)
+        .or(family.metrics.first())
+        .map_or_else(String::new, |m| m.name.to_string())
 }
 
 fn scene_view<'a>(

@@ -300,7 +300,7 @@ pub fn render(page: &Page) -> String {
     s.push_str(CSS);
     s.push_str("</style>\n</head>\n<body>\n<header>\n<h1>mbdbench report</h1>\n");
     s.push_str(&env_p(&page.env_line));
-    s.push_str(&format!("<p class=\"key\">{}</p>\n", esc(super::KEY_TEXT)));
+    s.push_str(&format!("<p class=\"key\">{}</p>\n", esc(&page.key_text)));
     if let Some((pass, fail)) = page.gate_summary {
         s.push_str(&format!(
             "<p><b>Gates:</b> {pass} passed, {fail} failed.</p>\n"

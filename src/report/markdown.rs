@@ -109,8 +109,7 @@ fn case_section(c: &CaseSection, env: &str, svg_dir: &str) -> String {
 pub fn render(page: &Page) -> String {
     let mut s = format!(
         "# mbdbench report\n\n`{}`\n\n{}\n\n",
-        page.env_line,
-        super::KEY_TEXT
+        page.env_line, page.key_text
     );
     if let Some((pass, fail)) = page.gate_summary {
         s.push_str(&format!("**Gates: {pass} passed, {fail} failed.**\n\n"));

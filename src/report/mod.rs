@@ -3,15 +3,19 @@
 //! inline SVG, no external `src`/`href`, no script), `out/summary.md` (the same text and
 //! tables for a CI log or PR comment) and every plot as `out/svg/<case>/[<scene>/]<plot>.svg`.
 //!
+//! The figures are the case's family's (`problem::figures`: which selections of variants each
+//! kind of plot draws, how to read the markers, the chart group the narrative contrasts); this
+//! module composes them and names no chart or integrator itself.
+//!
 //! Per case: a "what this shows" paragraph computed from the numbers (`narrative`); for a case
-//! with several scenes, error, conditioning and adaptive cost across scenes (`scenes`); per
+//! with several scenes, the family's measures across scenes (`scenes`); per
 //! scene, work-precision (error vs wall time and vs RHS evaluations, `work_precision`),
 //! convergence with the fitted orders (`convergence`), energy drift and constraint residual
 //! over time (`timeseries`), and the variants x metrics matrix; then the failure table, the
 //! largest completed ladder step per variant, the stability study's part when a
 //! `stability.json` is given (`stability`: step-search tables, stiffness-ladder and
 //! long-horizon plots), and the n/a combinations (`tables`). Colour =
-//! integrator, marker = parameterization, dashed = spatial formulation in every plot
+//! integrator, marker = parameterization, dashed = the family's second formulation in every plot
 //! (`style`); log axes carry explicit decade ticks with both end labels (`axes`).
 //!
 //! Robustness: a missing or unreadable series file, an `n/a` record, a null metric or a case
@@ -41,13 +45,20 @@ use crate::summary::Summary;
 
 pub use html::render_check;
 
-/// How to read the plots (page and markdown header).
-pub const KEY_TEXT: &str = "How to read the plots: colour = integrator, marker = \
-    parameterization (triangles: Euler angles; diamonds: rotvec hollow, so3 filled; circles: \
-    quat hollow, quat_proj filled; squares: matrix hollow, matrix_proj filled; x: se3_hq; +: \
-    dual_quat), solid line = body formulation, dashed = spatial. Marks in a red band at the \
-    top of a plot are runs that failed (no value). Log axes are labelled at powers of ten \
-    (1e-6 = 10^-6). Each plot's caption says which variants and which ladder points it draws.";
+/// How to read the plots (page and markdown header): the key of each family on the page, in
+/// family-table order (the first family's when the page has no case).
+fn key_text(views: &[data::CaseView]) -> String {
+    let present: Vec<&str> = crate::problem::FAMILIES
+        .iter()
+        .filter(|f| views.iter().any(|v| std::ptr::eq(v.family, **f)))
+        .map(|f| f.figures.key_text)
+        .collect();
+    if present.is_empty() {
+        crate::problem::FAMILIES[0].figures.key_text.to_string()
+    } else {
+        present.join(" ")
+    }
+}
 
 /// A plot on the page.
 #[derive(Debug, Clone)]
@@ -91,6 +102,8 @@ pub struct CaseSection {
 pub struct Page {
     /// Commit, date, rustc, CPU, OS, profile, threads.
     pub env_line: String,
+    /// How to read the plots (the families' keys).
+    pub key_text: String,
     pub cases: Vec<CaseSection>,
     /// (passed, failed) gate rows, when gate rows were given.
     pub gate_summary: Option<(usize, usize)>,
@@ -162,14 +175,19 @@ pub fn build_page(
                 continue;
             }
             let case = cases.iter().find(|c| c.name == name);
+            let family = data::family_of_view(
+                case,
+                src.summary.records.iter().filter(|r| r.key.case == name),
+            );
             views.push(data::CaseView {
                 title: case.map(|c| c.title.clone()).unwrap_or_default(),
                 primary: case
                     .map(|c| c.primary_metric.clone())
-                    .unwrap_or_else(|| "rotation_error_max".into()),
+                    .unwrap_or_else(|| data::default_primary(family)),
                 energy_scale: case.map(|c| c.energy_scale),
                 scenes: vec![],
                 case,
+                family,
                 name,
             });
         }
@@ -223,6 +241,7 @@ pub fn build_page(
     });
     Page {
         env_line: env_line(summary),
+        key_text: key_text(&views),
         cases: sections,
         gate_summary,
     }

@@ -5,10 +5,11 @@
 //!   evaluations (deterministic) and by wall time (`wall_s.min`), or the smallest error reached
 //!   when none gets there;
 //! - the failures, counted by kind, with the parameterizations and integrators involved;
-//! - for the Euler-angle charts: their lowest minimum conditioning, their failure rate against
-//!   the other charts', and the largest RHS-evaluation ratio of an adaptive method on an Euler
-//!   chart to the same method, formulation, tolerance and scene on `so3` (the cost of adapting
-//!   the step near a singular set);
+//! - for the family's chart group (`problem::figures::ChartGroup`; the rigid body's Euler-angle
+//!   charts): their lowest minimum conditioning, their failure rate against the other charts',
+//!   and the largest RHS-evaluation ratio of an adaptive method on a chart of the group to the
+//!   same method, formulation, tolerance and scene on the group's comparison chart (`so3`: the
+//!   cost of adapting the step near a singular set);
 //! - the fitted orders: per integrator, the median observed order over its fits;
 //! - how many combinations are `n/a`.
 //!
@@ -94,12 +95,19 @@ pub struct EulerCost<'a> {
     pub ratio: f64,
 }
 
-/// Finds the largest Euler/so3 cost ratio of the case's adaptive runs.
+/// Finds the largest cost ratio of the case's adaptive runs on a chart of the family's chart
+/// group (Euler) to the same method on the group's comparison chart (so3).
 pub fn euler_cost<'a>(cv: &CaseView<'a>) -> Option<EulerCost<'a>> {
+    let group = cv.family.figures.chart_group?;
     let mut best: Option<EulerCost<'a>> = None;
     for s in &cv.scenes {
-        for v in s.variants.iter().filter(|v| v.adaptive && v.key.is_euler()) {
-            let Some(g) = s.variant("so3", &v.key.integrator, &v.key.formulation) else {
+        for v in s
+            .variants
+            .iter()
+            .filter(|v| v.adaptive && group.contains(&v.key.param))
+        {
+            let Some(g) = s.variant(group.compare_with, &v.key.integrator, &v.key.formulation)
+            else {
                 continue;
             };
             for r in v.ok() {
@@ -124,10 +132,11 @@ pub fn euler_cost<'a>(cv: &CaseView<'a>) -> Option<EulerCost<'a>> {
     best
 }
 
-/// The Euler-chart run with the lowest `conditioning_min`.
+/// The run on a chart of the family's chart group (Euler) with the lowest `conditioning_min`.
 pub fn min_conditioning<'a>(cv: &CaseView<'a>) -> Option<(&'a Record, f64)> {
+    let group = cv.family.figures.chart_group?;
     cv.runs()
-        .filter(|r| r.key.param.starts_with("euler_"))
+        .filter(|r| group.contains(&r.key.param))
         .filter_map(|r| {
             r.metrics
                 .get("conditioning_min")
@@ -247,21 +256,22 @@ fn failure_sentence(cv: &CaseView) -> String {
 
 fn euler_sentences(cv: &CaseView) -> Vec<String> {
     let mut out = vec![];
-    let euler: Vec<&Record> = cv
-        .runs()
-        .filter(|r| r.key.param.starts_with("euler_"))
-        .collect();
+    let Some(group) = cv.family.figures.chart_group else {
+        return out;
+    };
+    let euler: Vec<&Record> = cv.runs().filter(|r| group.contains(&r.key.param)).collect();
     if euler.is_empty() {
         return out;
     }
     let other: Vec<&Record> = cv
         .runs()
-        .filter(|r| !r.key.param.starts_with("euler_"))
+        .filter(|r| !group.contains(&r.key.param))
         .collect();
     let ef = euler.iter().filter(|r| r.status == Status::Failed).count();
     let of = other.iter().filter(|r| r.status == Status::Failed).count();
     let mut s = format!(
-        "Euler-angle charts: {ef} of {} runs failed, against {of} of {} runs of the other charts",
+        "{}: {ef} of {} runs failed, against {of} of {} runs of the other charts",
+        group.label,
         euler.len(),
         other.len()
     );
@@ -277,9 +287,11 @@ fn euler_sentences(cv: &CaseView) -> Vec<String> {
     out.push(s);
     if let Some(e) = euler_cost(cv) {
         out.push(format!(
-            "At equal tolerance an adaptive method on an Euler chart needed up to {}x the RHS \
-             evaluations of the same method on so3: {} on scene {} took {} against {}.",
+            "At equal tolerance an adaptive method on {} needed up to {}x the RHS evaluations \
+             of the same method on {}: {} on scene {} took {} against {}.",
+            group.one,
             ratio(e.ratio),
+            group.compare_with,
             run_name(e.euler),
             e.euler.key.scene,
             e.euler.stats.rhs_evals,

@@ -1,6 +1,8 @@
-//! Across-scene plots for a case with several scenes (x = scene, a category axis): the
-//! primary error and the chart's minimum conditioning of rk4 on every parameterization, and
-//! the RHS evaluations of the adaptive methods on every parameterization. On `gimbal_lock`,
+//! Across-scene plots for a case with several scenes (x = scene, a category axis): each
+//! measure its family declares (`problem::figures::Measure`: the primary error, a metric, RHS
+//! evaluations) for one of its selections. The rigid body's are the primary error and the
+//! chart's minimum conditioning of rk4 on every parameterization, and the RHS evaluations of
+//! the adaptive methods on every parameterization. On `gimbal_lock`,
 //! whose scenes drive the Euler charts into or next to their singular sets, this is where
 //! their breakdown shows: failures in the red band, conditioning falling toward 0, error and
 //! adaptive cost rising while the other charts stay flat.
@@ -15,28 +17,24 @@ use std::collections::BTreeSet;
 
 use super::chart::{FailMark, Legend, Line, Plot};
 use super::data::{self, CaseView, VariantKey};
-use super::select::Selection;
+use super::select::{Admits, Selection};
+use crate::problem::figures::Admit;
 use crate::problem::{Axis, axis_names};
 use crate::summary::{Record, Status};
 
-/// What the y axis shows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Measure {
-    Error,
-    Conditioning,
-    RhsEvals,
-}
+pub use crate::problem::figures::Measure;
 
-/// The across-scene plots (empty for a case with fewer than 2 scenes).
+/// The across-scene plots the family declares (none for a case with fewer than 2 scenes).
 pub fn plots(cv: &CaseView, footer: &str) -> Vec<Plot> {
     if cv.scenes.len() < 2 {
         return vec![];
     }
-    vec![
-        plot(cv, Selection::Rk4, Measure::Error, footer),
-        plot(cv, Selection::Rk4, Measure::Conditioning, footer),
-        plot(cv, Selection::Adaptive, Measure::RhsEvals, footer),
-    ]
+    cv.family
+        .figures
+        .across_scenes
+        .iter()
+        .map(|&(sel, m)| plot(cv, sel, m, footer))
+        .collect()
 }
 
 /// Ladder values as bit patterns (exact: the values come from the same case file).
@@ -138,13 +136,13 @@ pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
             let x = i as f64 + jitter;
             match (m, r.status) {
                 (_, Status::Failed) => fails.push(FailMark { key: k.clone(), x }),
-                (Measure::Error, Status::Ok) => {
+                (Measure::Primary, Status::Ok) => {
                     if let Some(Some(e)) = r.metrics.get(&cv.primary) {
                         points.push((x, *e));
                     }
                 }
-                (Measure::Conditioning, Status::Ok) => {
-                    if let Some(Some(c)) = r.metrics.get("conditioning_min") {
+                (Measure::Metric { name, .. }, Status::Ok) => {
+                    if let Some(Some(c)) = r.metrics.get(name) {
                         points.push((x, *c));
                     }
                 }
@@ -166,7 +164,7 @@ pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
         .collect();
     vals.sort();
     vals.dedup();
-    let step = if sel == Selection::Adaptive {
+    let step = if sel.admit == Admit::Adaptive {
         "tol"
     } else {
         "dt"
@@ -183,18 +181,12 @@ pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
         )
     };
     let (id, y_label, what) = match m {
-        Measure::Error => (
+        Measure::Primary => (
             "scenes_error",
             cv.primary.clone(),
             format!("{} per scene", cv.primary),
         ),
-        Measure::Conditioning => (
-            "scenes_conditioning",
-            "conditioning_min".to_string(),
-            "the chart's minimum conditioning along the run per scene (0 on its singular set; \
-             charts without one stay at 1)"
-                .to_string(),
-        ),
+        Measure::Metric { name, id, what } => (id, name.to_string(), what.to_string()),
         Measure::RhsEvals => (
             "scenes_rhs",
             "RHS evaluations".to_string(),
@@ -203,7 +195,7 @@ pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
     };
     Plot {
         id: id.into(),
-        title: format!("{}: {} across scenes ({})", cv.name, y_label, sel.short()),
+        title: format!("{}: {} across scenes ({})", cv.name, y_label, sel.short),
         x_label: "scene".into(),
         y_label,
         x: super::axes::Scale::Category(names),
@@ -213,7 +205,7 @@ pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
         legend: Legend::Factored,
         caption: format!(
             "Across scenes: {what}, {at}. {} Marks in the red band: runs that failed.",
-            sel.describe()
+            sel.describe
         ),
         footer: footer.into(),
     }

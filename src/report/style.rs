@@ -1,6 +1,6 @@
 //! The report's visual encoding, fixed across every plot so a variant looks the same
 //! everywhere: colour = integrator, marker = parameterization, line pattern = formulation
-//! (`body` solid, `spatial` dashed).
+//! (the family's first formulation solid, its second dashed), all by the families' axis order.
 //!
 //! The markers are grouped by family so a reader can tell the chart type at a glance:
 //! triangles for the three Euler-angle charts, diamonds for the rotation vector (hollow) and
@@ -99,9 +99,14 @@ pub fn marker(param: &str) -> Marker {
     }
 }
 
-/// Whether a formulation's lines are dashed (`spatial`; `body` and unknown ones are solid).
+/// Whether a formulation's lines are dashed: the second (fourth, ...) formulation of its
+/// family's axis is, the first (third, ...) and unknown ones are solid (the rigid body:
+/// `body` solid, `spatial` dashed).
 pub fn dashed(formulation: &str) -> bool {
-    formulation == "spatial"
+    crate::problem::FAMILIES
+        .iter()
+        .find_map(|f| f.axes.formulations.iter().position(|x| *x == formulation))
+        .is_some_and(|i| i % 2 == 1)
 }
 
 /// `#rrggbb`.

@@ -16,25 +16,18 @@ use std::path::Path;
 
 use super::chart::{Legend, Line, Plot};
 use super::data::{self, CaseView, SceneView};
-use super::select::Selection;
+use super::select::{Admits, Selection};
 
-/// Which invariant.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Quantity {
-    Energy,
-    Constraint,
-}
+pub use crate::problem::figures::Quantity;
 
-/// The time-series plots of a scene: energy drift and constraint residual for the rk4 and
-/// so3 selections.
+/// The time-series plots of a scene: each quantity and selection the family declares.
 pub fn plots(cv: &CaseView, sv: &SceneView, series_root: &Path, footer: &str) -> Vec<Plot> {
-    let mut out = vec![];
-    for q in [Quantity::Energy, Quantity::Constraint] {
-        for sel in [Selection::Rk4, Selection::So3] {
-            out.push(plot(cv, sv, series_root, q, sel, footer));
-        }
-    }
-    out
+    cv.family
+        .figures
+        .timeseries
+        .iter()
+        .map(|&(q, sel)| plot(cv, sv, series_root, q, sel, footer))
+        .collect()
 }
 
 /// The relative energy drift of a series (`metrics::energy_drift::relative`; a case the
@@ -70,9 +63,9 @@ pub fn plot(
                 .into_iter()
                 .map(Some)
                 .collect(),
-            Quantity::Constraint => s.constraint.clone(),
+            Quantity::Constraint { .. } => s.constraint.clone(),
         };
-        if q == Quantity::Constraint && ys.iter().all(Option::is_none) {
+        if matches!(q, Quantity::Constraint { .. }) && ys.iter().all(Option::is_none) {
             if !unconstrained.contains(&v.key.param) {
                 unconstrained.push(v.key.param.clone());
             }
@@ -105,13 +98,9 @@ pub fn plot(
             "Relative energy drift |E(t) - E0| / max(|E0|, {}) at the score times. ",
             cv.energy_scale.map(data::num).unwrap_or_else(|| "0".into())
         ),
-        Quantity::Constraint => {
-            "The chart's own constraint residual (||q|^2 - 1| for quaternions, |R^T R - I| for \
-             matrices, the dual quaternion's two) at the score times. "
-                .to_string()
-        }
+        Quantity::Constraint { what } => what.to_string(),
     };
-    caption.push_str(sel.describe());
+    caption.push_str(sel.describe);
     caption.push_str(&format!(
         " Each variant at its coarsest completed ladder point: {}.",
         if used.is_empty() {
@@ -131,16 +120,11 @@ pub fn plot(
     }
     let (id, name, y_label) = match q {
         Quantity::Energy => ("energy", "energy drift", "|E - E0| / max(|E0|, E_scale)"),
-        Quantity::Constraint => ("constraint", "constraint residual", "constraint residual"),
+        Quantity::Constraint { .. } => ("constraint", "constraint residual", "constraint residual"),
     };
     Plot {
-        id: format!("{}/{id}_{}", sv.name, sel.id()),
-        title: format!(
-            "{}/{}: {name} over time ({})",
-            cv.name,
-            sv.name,
-            sel.short()
-        ),
+        id: format!("{}/{id}_{}", sv.name, sel.id),
+        title: format!("{}/{}: {name} over time ({})", cv.name, sv.name, sel.short),
         x_label: "t (s)".into(),
         y_label: y_label.into(),
         x: super::axes::Scale::Linear,

@@ -9,7 +9,7 @@
 //! null primary metric (no reference) is left out.
 use super::chart::{FailMark, Legend, Line, Plot};
 use super::data::{CaseView, SceneView};
-use super::select::Selection;
+use super::select::{Admits, Selection};
 use crate::summary::{Record, Status};
 
 /// The cost axis.
@@ -45,7 +45,7 @@ impl Cost {
 /// summary written before it was recorded).
 pub fn plots(cv: &CaseView, sv: &SceneView, footer: &str, timing: Option<&str>) -> Vec<Plot> {
     let mut out = vec![];
-    for sel in Selection::ALL {
+    for &sel in cv.family.figures.work_precision {
         for cost in [Cost::Wall, Cost::Rhs] {
             out.push(plot(cv, sv, sel, cost, footer, timing));
         }
@@ -109,7 +109,7 @@ pub fn plot(
         Cost::Rhs => "against right-hand-side evaluations (deterministic)".into(),
     };
     Plot {
-        id: format!("{}/wp_{}_{}", sv.name, cost.id(), sel.id()),
+        id: format!("{}/wp_{}_{}", sv.name, cost.id(), sel.id),
         title: format!(
             "{}/{}: {} vs {} ({})",
             cv.name,
@@ -119,7 +119,7 @@ pub fn plot(
                 Cost::Wall => "wall time",
                 Cost::Rhs => "RHS evals",
             },
-            sel.short()
+            sel.short
         ),
         x_label: cost.label().into(),
         y_label: cv.primary.clone(),
@@ -132,8 +132,7 @@ pub fn plot(
             "Work-precision: {} (max over the run) {what}, each line through the variant's \
              whole ladder (fixed steps coarse to fine, tolerances loose to tight). {} Lower \
              left is better; marks in the red band are runs that failed, at the work they did.",
-            cv.primary,
-            sel.describe()
+            cv.primary, sel.describe
         ),
         footer: footer.into(),
     }

@@ -22,6 +22,7 @@ pub static FAMILY: Family = Family {
     load: super::case::load,
     inputs: super::case::inputs,
     compile,
+    figures: &super::figures::FIGURES,
 };
 
 /// The metrics of rigid-body cases (design.md, "Files").

@@ -20,6 +20,7 @@
 pub mod baseline;
 pub mod case;
 pub mod family;
+pub mod figures;
 pub mod plan;
 pub mod problem;
 pub mod reference;

@@ -8,8 +8,30 @@ use crate::case::{Case, CaseError, Scene};
 use crate::integrate::adaptive_rk::AdaptiveRk;
 use crate::integrate::explicit_rk::ExplicitRk;
 use crate::integrate::{Adaptive, FixedStep};
-use crate::problem::{Axes, Column, Family, Metric, Problem, Stepping, Variant};
+use crate::problem::figures::{Admit, Figures, Measure, Quantity, Selection};
+use crate::problem::{Axes, Axis, Column, Family, Metric, Problem, Stepping, Variant};
 use crate::run::{Observe, RunOutput, Watched, run_adaptive, run_fixed};
+
+/// Every variant of the chain in each plot (six lines).
+const ALL: Selection = Selection {
+    id: "all",
+    short: "every variant",
+    describe: "Lines: every variant that ran, chain_nodal solid, chain_modal dashed.",
+    admit: Admit::All,
+    legend_axes: &[Axis::Integrator, Axis::Formulation],
+};
+
+/// The chain's figures: work-precision and convergence of every variant, energy over time.
+const FIGURES: Figures = Figures {
+    key_text: "How to read the plots: colour = integrator, solid line = chain_nodal, dashed = \
+        chain_modal. Marks in a red band at the top of a plot are runs that failed (no value). \
+        Log axes are labelled at powers of ten (1e-6 = 10^-6).",
+    work_precision: &[ALL],
+    convergence: &[ALL],
+    timeseries: &[(Quantity::Energy, ALL)],
+    across_scenes: &[(ALL, Measure::Primary)],
+    chart_group: None,
+};
 
 /// The spring-chain family.
 pub static FAMILY: Family = Family {
@@ -63,6 +85,7 @@ pub static FAMILY: Family = Family {
     load: super::case::load,
     inputs: super::case::inputs,
     compile,
+    figures: &FIGURES,
 };
 
 /// A monomorphised run.

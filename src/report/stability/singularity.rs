@@ -175,7 +175,7 @@ pub(super) fn singularity_facts(rs: &[&Record]) -> Vec<String> {
             }
         }
         for (key, mut pts) in by_key {
-            if !key.is_euler() || pts.len() < 2 {
+            if !key.in_chart_group() || pts.len() < 2 {
                 continue;
             }
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));

@@ -1,0 +1,82 @@
+//! The rigid body's figures in the report (`problem::figures`): three selections that together
+//! draw every registered integrator and every parameterization (rk4 on every chart: the charts
+//! at equal method; every adaptive method on every chart over its tolerance ladder; every
+//! integrator on `so3`, the only chart the geometric methods run on), the energy and
+//! quaternion/matrix constraint drift over time, the Euler charts' breakdown across the scenes
+//! of a case (error, the chart's conditioning, adaptive cost), and the Euler-angle charts as
+//! the group the narrative contrasts with the others (their singular sets).
+use crate::problem::Axis;
+use crate::problem::figures::{Admit, ChartGroup, Figures, Measure, Quantity, Selection};
+
+/// rk4 on every parameterization, both formulations.
+const RK4: Selection = Selection {
+    id: "rk4",
+    short: "rk4, every chart",
+    describe: "Lines: rk4 (classical RK4 on additive charts, RKMK4 on Lie-group charts) on \
+               every parameterization that ran, body formulation solid, spatial dashed.",
+    admit: Admit::Integrator("rk4"),
+    legend_axes: &[Axis::Param, Axis::Formulation],
+};
+
+/// Every adaptive method on every parameterization, both formulations.
+const ADAPTIVE: Selection = Selection {
+    id: "adaptive",
+    short: "adaptive, every chart",
+    describe: "Lines: every adaptive method (dopri5, dop853) on every parameterization that \
+               ran, over its tolerance ladder; body formulation solid, spatial dashed.",
+    admit: Admit::Adaptive,
+    legend_axes: &[Axis::Param, Axis::Integrator, Axis::Formulation],
+};
+
+/// Every integrator on the so3 chart, both formulations.
+const SO3: Selection = Selection {
+    id: "so3",
+    short: "so3, every integrator",
+    describe: "Lines: every integrator on the so3 chart (unit quaternion on SO(3)), body \
+               formulation solid, spatial dashed (the geometric methods run in the body \
+               formulation only).",
+    admit: Admit::Param("so3"),
+    legend_axes: &[Axis::Integrator, Axis::Formulation],
+};
+
+const CONSTRAINT: Quantity = Quantity::Constraint {
+    what: "The chart's own constraint residual (||q|^2 - 1| for quaternions, |R^T R - I| for \
+           matrices, the dual quaternion's two) at the score times. ",
+};
+
+/// The rigid body's declaration.
+pub const FIGURES: Figures = Figures {
+    key_text: "How to read the plots: colour = integrator, marker = \
+    parameterization (triangles: Euler angles; diamonds: rotvec hollow, so3 filled; circles: \
+    quat hollow, quat_proj filled; squares: matrix hollow, matrix_proj filled; x: se3_hq; +: \
+    dual_quat), solid line = body formulation, dashed = spatial. Marks in a red band at the \
+    top of a plot are runs that failed (no value). Log axes are labelled at powers of ten \
+    (1e-6 = 10^-6). Each plot's caption says which variants and which ladder points it draws.",
+    work_precision: &[RK4, ADAPTIVE, SO3],
+    convergence: &[RK4, SO3],
+    timeseries: &[
+        (Quantity::Energy, RK4),
+        (Quantity::Energy, SO3),
+        (CONSTRAINT, RK4),
+        (CONSTRAINT, SO3),
+    ],
+    across_scenes: &[
+        (RK4, Measure::Primary),
+        (
+            RK4,
+            Measure::Metric {
+                name: "conditioning_min",
+                id: "scenes_conditioning",
+                what: "the chart's minimum conditioning along the run per scene (0 on its \
+                       singular set; charts without one stay at 1)",
+            },
+        ),
+        (ADAPTIVE, Measure::RhsEvals),
+    ],
+    chart_group: Some(ChartGroup {
+        prefix: "euler_",
+        label: "Euler-angle charts",
+        one: "an Euler chart",
+        compare_with: "so3",
+    }),
+};

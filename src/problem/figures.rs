@@ -1,0 +1,131 @@
+//! The figures a model family declares for the report: which variants each plot draws (named
+//! selections, with the caption sentence that names them), which work-precision, convergence,
+//! time-series and across-scene plots a scene or case gets, how to read the markers, and the
+//! group of parameterizations the narrative contrasts with the others (the rigid body's Euler
+//! charts, with their singular sets). The report composes these declarations and names no
+//! chart or integrator itself; a family without a declaration of some kind simply gets no plot
+//! of that kind.
+//!
+//! The kinds are today's four (work-precision against wall time and RHS evaluations,
+//! convergence over the fixed-step ladder, energy and constraint drift over time, a measure
+//! across the scenes of a case). A new kind (a column over time against the reference, an x-y
+//! curve such as a hysteresis loop) is a new list here and its composer in `src/report/`.
+//!
+//! # Example
+//!
+//! ```
+//! use mbdbench::problem::{self, figures::Admit};
+//!
+//! let fig = problem::FAMILIES[0].figures;
+//! // Every work-precision selection draws something of the family's variant table.
+//! for sel in fig.work_precision {
+//!     let drawn = problem::matrix::registered(problem::FAMILIES[0])
+//!         .filter(|v| sel.admit.admits(v.param, v.integrator, v.info.adaptive))
+//!         .count();
+//!     assert!(drawn > 0, "{}", sel.id);
+//! }
+//! assert!(Admit::Adaptive.admits("any", "any", true));
+//! ```
+use super::Axis;
+
+/// Which variants a selection admits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Admit {
+    /// Every variant with this integrator.
+    Integrator(&'static str),
+    /// Every variant on this parameterization.
+    Param(&'static str),
+    /// Every adaptive variant.
+    Adaptive,
+    /// Every variant.
+    All,
+}
+
+impl Admit {
+    /// Whether the variant `(param, integrator)`, adaptive or not, is admitted.
+    pub fn admits(self, param: &str, integrator: &str, adaptive: bool) -> bool {
+        match self {
+            Admit::Integrator(i) => integrator == i,
+            Admit::Param(p) => param == p,
+            Admit::Adaptive => adaptive,
+            Admit::All => true,
+        }
+    }
+}
+
+/// A named selection of variants: what a plot draws and how its caption says so.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Selection {
+    /// A short id for file names (`wp_wall_<id>`).
+    pub id: &'static str,
+    /// A title fragment.
+    pub short: &'static str,
+    /// The caption sentence naming the lines.
+    pub describe: &'static str,
+    pub admit: Admit,
+    /// The axes a convergence legend names: those that vary within the selection.
+    pub legend_axes: &'static [Axis],
+}
+
+/// A quantity drawn over time from a run's series file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// The relative energy drift (`metrics::energy_drift::relative`).
+    Energy,
+    /// The chart's constraint residual (absent for charts without one); `what` is the
+    /// caption's sentence saying what it is for the family's charts.
+    Constraint { what: &'static str },
+}
+
+/// What an across-scenes plot measures per scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Measure {
+    /// The case's primary error metric.
+    Primary,
+    /// A metric of the records, with the plot's id and the caption's description.
+    Metric {
+        name: &'static str,
+        id: &'static str,
+        what: &'static str,
+    },
+    /// RHS evaluations.
+    RhsEvals,
+}
+
+/// A group of parameterizations the narrative contrasts with the others (failure rate, lowest
+/// conditioning, adaptive cost against the same method on `compare_with`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ChartGroup {
+    /// The group's parameterizations: names starting with this.
+    pub prefix: &'static str,
+    /// The group at the start of a sentence (`Euler-angle charts`).
+    pub label: &'static str,
+    /// One member in running text (`an Euler chart`).
+    pub one: &'static str,
+    /// The parameterization the group's adaptive cost is compared with.
+    pub compare_with: &'static str,
+}
+
+impl ChartGroup {
+    /// Whether `param` belongs to the group.
+    pub fn contains(&self, param: &str) -> bool {
+        param.starts_with(self.prefix)
+    }
+}
+
+/// Everything a family declares for the report.
+#[derive(Debug, Clone, Copy)]
+pub struct Figures {
+    /// How to read the plots' colours, markers and lines (page and markdown header).
+    pub key_text: &'static str,
+    /// Per scene: each selection against wall time, then against RHS evaluations.
+    pub work_precision: &'static [Selection],
+    /// Per scene: the fixed-step variants of each selection against their step.
+    pub convergence: &'static [Selection],
+    /// Per scene: each quantity over time, for each selection.
+    pub timeseries: &'static [(Quantity, Selection)],
+    /// Per case with several scenes: each measure across the scenes.
+    pub across_scenes: &'static [(Selection, Measure)],
+    /// The group the narrative contrasts, if any.
+    pub chart_group: Option<ChartGroup>,
+}
