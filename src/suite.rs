@@ -482,11 +482,13 @@ pub fn print_table(
                 *failures.entry(k).or_default() += 1;
             }
         }
-        let primary = cases
-            .iter()
-            .find(|c| c.name == case)
+        let case_file = cases.iter().find(|c| c.name == case);
+        let primary = case_file
             .map(|c| c.primary_metric.clone())
-            .unwrap_or_else(|| "rotation_error_max".into());
+            .unwrap_or_else(|| {
+                let family = crate::problem::family_of_case(case_file, last.values().copied());
+                family.default_primary().to_string()
+            });
         let mut keys: Vec<_> = last.keys().copied().collect();
         keys.sort_by_key(|(p, i, f)| problem::variant_order(p, i, f));
         for k in keys {

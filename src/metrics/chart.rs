@@ -6,7 +6,7 @@ use super::Scores;
 use crate::run::RunOutput;
 
 /// Scores the chart diagnostics.
-pub fn score(out: &RunOutput, s: &mut Scores) {
+pub fn score<O>(out: &RunOutput<O>, s: &mut Scores) {
     let mut any = false;
     let mut m = 0.0_f64;
     let mut finite = true;

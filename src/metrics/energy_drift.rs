@@ -4,7 +4,6 @@
 //! level (secular for non-symplectic methods, bounded for symplectic ones) or at round-off for
 //! energy-conserving schemes. Null when the run failed.
 use super::Scores;
-use crate::model::rigid_body::RigidBody;
 use crate::run::RunOutput;
 
 /// The relative drift of each energy from the first, the one expression of the summary, the
@@ -31,11 +30,6 @@ pub fn relative(energies: &[f64], energy_scale: f64) -> impl Iterator<Item = f64
 /// The largest relative drift (`relative`), 0 for no energies.
 pub fn max_relative(energies: &[f64], energy_scale: f64) -> f64 {
     relative(energies, energy_scale).fold(0.0, f64::max)
-}
-
-/// The energy at each score point of `out`.
-pub fn energies(out: &RunOutput, body: &RigidBody) -> Vec<f64> {
-    out.scored().map(|s| body.energy(&s.obs)).collect()
 }
 
 /// Scores the drift given the score-grid energies.

@@ -1,4 +1,6 @@
-//! Metrics: what a run is scored on (design.md, "Files": metric names). One file per metric
+//! Metrics every family shares: what a run is scored on (design.md, "Files": metric names),
+//! the energy drift, the chart diagnostics and the order fit; a family's own metrics (the rigid
+//! body's trajectory errors and momentum drift) live in its folder. One file per metric
 //! family; each declares what it needs (a reference, a conserved quantity, a constrained
 //! chart) and is absent from the record where that does not apply (never 0), or `null` with
 //! a reason where it applies but cannot be computed (e.g. the run failed before `t_end`).
@@ -6,9 +8,7 @@ use std::collections::BTreeMap;
 
 pub mod chart;
 pub mod energy_drift;
-pub mod momentum_drift;
 pub mod order;
-pub mod trajectory_error;
 
 /// Metric values by name (`None` = null) and, for each null, the reason.
 #[derive(Debug, Clone, Default, PartialEq)]

@@ -66,6 +66,19 @@ pub fn family_of_variant(param: &str, integrator: &str, formulation: &str) -> &'
         .unwrap_or(FAMILIES[0])
 }
 
+/// The family of a case in a summary: its case file's when given, else the family naming the
+/// variant of its first record, else the first family.
+pub fn family_of_case<'a>(
+    case: Option<&Case>,
+    mut records: impl Iterator<Item = &'a crate::summary::Record>,
+) -> &'static Family {
+    match (case, records.next()) {
+        (Some(c), _) => family_of(c),
+        (None, Some(r)) => family_of_variant(&r.key.param, &r.key.integrator, &r.key.formulation),
+        (None, None) => FAMILIES[0],
+    }
+}
+
 /// The family with TOML `model` key `model`.
 pub fn find_family(model: &str) -> Option<&'static Family> {
     FAMILIES.iter().copied().find(|f| f.model == model)
@@ -214,6 +227,16 @@ impl Family {
         (self.variants)().iter().find(|v| {
             v.param == param && v.integrator == integrator && v.formulation == formulation
         })
+    }
+
+    /// The primary metric of a case whose file and fits are unknown: the family's first
+    /// error against the reference (else its first metric).
+    pub fn default_primary(&self) -> &'static str {
+        self.metrics
+            .iter()
+            .find(|m| m.reference_error)
+            .or(self.metrics.first())
+            .map_or("", |m| m.name)
     }
 
     /// Whether `name` is a metric of this family.

@@ -297,7 +297,7 @@ pub fn case_views<'a>(summary: &'a Summary, cases: &'a [Case]) -> Vec<CaseView<'
                 .into_iter()
                 .map(|scene| scene_view(name, scene, &scenes_map[scene], &fits))
                 .collect();
-            let family = family_of_view(case, scenes_map.values().flatten().copied());
+            let family = problem::family_of_case(case, scenes_map.values().flatten().copied());
             let primary = case
                 .map(|c| c.primary_metric.clone())
                 .or_else(|| {
@@ -307,7 +307,7 @@ pub fn case_views<'a>(summary: &'a Summary, cases: &'a [Case]) -> Vec<CaseView<'
                         .find(|f| f.key.case == name)
                         .map(|f| f.metric.clone())
                 })
-                .unwrap_or_else(|| default_primary(family));
+                .unwrap_or_else(|| family.default_primary().to_string());
             CaseView {
                 name: name.to_string(),
                 title: case.map(|c| c.title.clone()).unwrap_or_default(),
@@ -319,31 +319,6 @@ pub fn case_views<'a>(summary: &'a Summary, cases: &'a [Case]) -> Vec<CaseView<'
             }
         })
         .collect()
-}
-
-/// The family of a case: its case file's, else the family naming its first record's variant.
-pub fn family_of_view<'a>(
-    case: Option<&Case>,
-    mut records: impl Iterator<Item = &'a Record>,
-) -> &'static Family {
-    match (case, records.next()) {
-        (Some(c), _) => problem::family_of(c),
-        (None, Some(r)) => {
-            problem::family_of_variant(&r.key.param, &r.key.integrator, &r.key.formulation)
-        }
-        (None, None) => problem::FAMILIES[0],
-    }
-}
-
-/// The primary metric of a case whose file and fits are unknown: the family's first error
-/// against the reference.
-pub fn default_primary(family: &Family) -> String {
-    family
-        .metrics
-        .iter()
-        .find(|m| m.reference_error)
-        .or(family.metrics.first())
-        .map_or_else(String::new, |m| m.name.to_string())
 }
 
 fn scene_view<'a>(

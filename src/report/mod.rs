@@ -175,7 +175,7 @@ pub fn build_page(
                 continue;
             }
             let case = cases.iter().find(|c| c.name == name);
-            let family = data::family_of_view(
+            let family = crate::problem::family_of_case(
                 case,
                 src.summary.records.iter().filter(|r| r.key.case == name),
             );
@@ -183,7 +183,7 @@ pub fn build_page(
                 title: case.map(|c| c.title.clone()).unwrap_or_default(),
                 primary: case
                     .map(|c| c.primary_metric.clone())
-                    .unwrap_or_else(|| data::default_primary(family)),
+                    .unwrap_or_else(|| family.default_primary().to_string()),
                 energy_scale: case.map(|c| c.energy_scale),
                 scenes: vec![],
                 case,

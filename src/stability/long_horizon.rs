@@ -6,7 +6,7 @@
 //!
 //! Errors at a sample `t_k`: `e_E(t) = |E(t) - E_0| / max(|E_0|, energy_scale)` (as
 //! `metrics::energy_drift`) and `e_L(t) = max_i |L_i(t) - L_i(0)| / |L(0)|` over the momentum
-//! components the body conserves (`RigidBody::conserved_momenta`, as `metrics::momentum_drift`:
+//! components the body conserves (`RigidBody::conserved_momenta`, as `model::rigid_body::momentum_drift`:
 //! the world vector `L` for gni; `L_z` about the pivot and the spin `L_3` for the heavy top).
 //! Fit rule: the envelope `m(t_k) = max_{j <= k} e(t_j)` (the running maximum over the samples:
 //! an error that crosses zero, a random walk above all, has a log that dives at every

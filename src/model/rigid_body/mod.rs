@@ -21,12 +21,14 @@ pub mod baseline;
 pub mod case;
 pub mod family;
 pub mod figures;
+pub mod momentum_drift;
 pub mod plan;
 pub mod problem;
 pub mod reference;
 pub mod refgen;
 pub mod registry;
 pub mod score;
+pub mod trajectory_error;
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3, Vector6};
 use std::marker::PhantomData;

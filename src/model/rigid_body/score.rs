@@ -23,11 +23,11 @@ pub fn score(out: &RunOutput, cx: &ScoreContext) -> (Scores, Series) {
     let mut s = Scores::default();
     let translates = cx.body.translates();
     if let Some(r) = cx.reference {
-        metrics::trajectory_error::score(out, r, translates, &mut s);
+        super::trajectory_error::score(out, r, translates, &mut s);
     }
-    let energies = metrics::energy_drift::energies(out, cx.body);
+    let energies: Vec<f64> = out.scored().map(|s| cx.body.energy(&s.obs)).collect();
     metrics::energy_drift::score(out, &energies, cx.energy_scale, &mut s);
-    metrics::momentum_drift::score(out, cx.body, &mut s);
+    super::momentum_drift::score(out, cx.body, &mut s);
     metrics::chart::score(out, &mut s);
     let scored: Vec<_> = out.scored().collect();
     let primary_error = cx.reference.map(|r| {

@@ -2,7 +2,7 @@
 //! model conserves (`RigidBody::conserved_momenta`: the world vector for a torque-free body; the
 //! vertical component about the pivot and the spin for the heavy top) of `|L - L0| / |L0|`.
 //! Absent where nothing is conserved (springs), null when the run failed.
-use super::Scores;
+use crate::metrics::Scores;
 use crate::model::rigid_body::RigidBody;
 use crate::run::RunOutput;
 

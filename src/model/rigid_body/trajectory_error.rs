@@ -9,7 +9,7 @@
 //! accuracy claim say nothing about the method (the order fits exclude them).
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
-use super::Scores;
+use crate::metrics::Scores;
 use crate::math::so3;
 use crate::model::rigid_body::reference::Reference;
 use crate::run::RunOutput;
