@@ -269,21 +269,21 @@ fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
     }
     if json {
         let v = serde_json::json!({ "scenes": scenes, "registered": registered });
-        println!(
+        crate::say!(
             "{}",
             serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?
         );
         return Ok(EXIT_OK);
     }
     for c in &cases {
-        println!("{} — {}", c.name, c.title);
+        crate::say!("{} — {}", c.name, c.title);
         for s in &c.scenes {
-            println!("  scene {} (t_end {} s)", s.name, s.t_end);
+            crate::say!("  scene {} (t_end {} s)", s.name, s.t_end);
         }
     }
-    println!("\nregistered variants: {registered}");
+    crate::say!("\nregistered variants: {registered}");
     for v in families.iter().flat_map(|f| (f.variants)()) {
-        println!(
+        crate::say!(
             "  {:<12} {:<18} {:<8} order {} {}{}{}",
             v.param,
             v.integrator,
@@ -298,7 +298,7 @@ fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
             if v.info.lie_group { "lie-group" } else { "" }
         );
     }
-    println!("\nnot applicable:");
+    crate::say!("\nnot applicable:");
     let mut seen = BTreeMap::new();
     for cell in families.iter().flat_map(|f| problem::matrix(f)) {
         if let Entry::NotApplicable(why) = cell.entry {
@@ -309,12 +309,12 @@ fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
         }
     }
     for (reason, list) in seen {
-        println!("  {} combinations: {reason}", list.len());
+        crate::say!("  {} combinations: {reason}", list.len());
     }
     for p in &problems {
         for v in (p.family().variants)() {
             if let Some(r) = p.na_reason(v) {
-                println!(
+                crate::say!(
                     "  {}/{}: {}/{}/{}: {r}",
                     p.case(),
                     p.scene(),
@@ -375,7 +375,7 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
         if a.quick { ", quick tier" } else { "" }
     );
     let summary = suite::run_catalogue(problems, &filter, &opts)?;
-    let mut stdout = std::io::stdout().lock();
+    let mut stdout = crate::quiet::Stdout;
     suite::print_table(&summary, &cases, &mut stdout).map_err(|e| e.to_string())?;
     let runs = summary
         .records
@@ -387,7 +387,7 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
         .iter()
         .filter(|r| r.status == crate::summary::Status::Failed)
         .count();
-    println!(
+    crate::say!(
         "\n{runs} runs ({failed} ended with a typed failure), {} n/a; {:.1} s; summary: {}",
         summary.records.len() - runs,
         t0.elapsed().as_secs_f64(),
@@ -424,9 +424,9 @@ fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
     );
     let summary =
         crate::stability::run_study(&cases, &a.filters.case, &a.filters.scene, &filter, &opts)?;
-    let mut stdout = std::io::stdout().lock();
+    let mut stdout = crate::quiet::Stdout;
     crate::stability::print_table(&summary, &mut stdout).map_err(|e| e.to_string())?;
-    println!(
+    crate::say!(
         "\n{} records, {} fits; {:.1} s; {}",
         summary.records.len(),
         summary.fits.len(),
@@ -487,7 +487,7 @@ fn cmd_report(
         &out,
     )
     .map_err(|e| e.to_string())?;
-    println!(
+    crate::say!(
         "report: {} ({} SVGs, {} ) in {:.1} s",
         files.index_html.display(),
         files.svgs.len(),
@@ -504,7 +504,7 @@ fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
             .clone()
             .unwrap_or_else(|| PathBuf::from("reports/baseline/quick.json"));
         crate::gate::update_baseline(&a.summary, &target).map_err(|e| e.to_string())?;
-        println!(
+        crate::say!(
             "baseline {} rewritten from {}",
             target.display(),
             a.summary.display()
@@ -525,7 +525,7 @@ fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
     };
     let rows = crate::gate::evaluate(&cases, &summary, stability.as_ref(), &opts)
         .map_err(|e| e.to_string())?;
-    let mut out = std::io::stdout().lock();
+    let mut out = crate::quiet::Stdout;
     crate::gate::print_table(&rows, &mut out).map_err(|e| e.to_string())?;
     Ok(crate::gate::exit_code(&rows))
 }
@@ -668,10 +668,10 @@ fn cmd_reference(
     for p in &problems {
         if check {
             let (ok, msg) = p.check_reference(&root)?;
-            println!("{} {msg}", if ok { "pass" } else { "FAIL" });
+            crate::say!("{} {msg}", if ok { "pass" } else { "FAIL" });
             all_ok &= ok;
         } else {
-            println!("{}", p.make_reference(&root)?);
+            crate::say!("{}", p.make_reference(&root)?);
         }
     }
     Ok(if all_ok { EXIT_OK } else { EXIT_FAILED })

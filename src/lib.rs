@@ -31,6 +31,7 @@ pub mod metrics;
 pub mod model;
 pub mod plan;
 pub mod problem;
+pub mod quiet;
 pub mod reference;
 pub mod report;
 pub mod rotation;

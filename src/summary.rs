@@ -193,6 +193,63 @@ pub struct Summary {
     pub fits: Vec<FitRecord>,
 }
 
+impl Summary {
+    /// What the schema cannot check, for a summary read from a file: every run appears once
+    /// (its run key and ladder point), a `failed` record carries its failure and an `ok` or
+    /// `n/a` one none, and no error or drift metric (a name containing `error` or `drift`) is
+    /// negative. The message names the record by its index and key.
+    pub fn check(&self) -> Result<(), String> {
+        let mut seen: BTreeMap<(&RunKey, u64, u64), usize> = BTreeMap::new();
+        for (i, r) in self.records.iter().enumerate() {
+            let k = &r.key;
+            let name = || {
+                format!(
+                    "records[{i}] ({}/{} {}/{}/{}{})",
+                    k.case,
+                    k.scene,
+                    k.param,
+                    k.integrator,
+                    k.formulation,
+                    match (r.dt, r.tol) {
+                        (Some(h), _) => format!(" dt {h:e}"),
+                        (None, Some(t)) => format!(" tol {t:e}"),
+                        _ => String::new(),
+                    }
+                )
+            };
+            let point = (
+                k,
+                r.dt.map_or(0, f64::to_bits),
+                r.tol.map_or(0, f64::to_bits),
+            );
+            if let Some(j) = seen.insert(point, i) {
+                return Err(format!("{} is the same run as records[{j}]", name()));
+            }
+            match (r.status, &r.failure) {
+                (Status::Failed, None) => {
+                    return Err(format!("{}: status `failed` without a `failure`", name()));
+                }
+                (Status::Ok | Status::NotApplicable, Some(_)) => {
+                    return Err(format!(
+                        "{}: a `failure` on a run that did not fail",
+                        name()
+                    ));
+                }
+                _ => {}
+            }
+            for (m, v) in &r.metrics {
+                if let Some(v) = v
+                    && *v < 0.0
+                    && (m.contains("error") || m.contains("drift"))
+                {
+                    return Err(format!("{}: metric `{m}` is negative ({v:e})", name()));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
 /// The commit this binary was built from.
 pub fn git_commit() -> &'static str {
     env!("MBDBENCH_GIT_COMMIT")

@@ -7,14 +7,36 @@
 use super::tables::{Table, Tone};
 use super::{CaseSection, Page};
 
-/// Escapes a table cell: pipes, and newlines folded to spaces.
+/// Makes text inert for a Markdown renderer, as `index.html` escapes it: a `<` that would open
+/// a tag, a comment, a declaration or an autolink (followed by a letter, `/`, `!` or `?`) and an
+/// `&` that would start an entity (followed by a letter or `#`) are written as entities; the
+/// rest (`<=`, `a & b`) stays as it reads.
+fn text(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut it = s.chars().peekable();
+    while let Some(c) = it.next() {
+        let next = it.peek().copied();
+        match c {
+            '<' if next.is_some_and(|n| n.is_ascii_alphabetic() || "/!?".contains(n)) => {
+                out.push_str("&lt;")
+            }
+            '&' if next.is_some_and(|n| n.is_ascii_alphabetic() || n == '#') => {
+                out.push_str("&amp;")
+            }
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// Escapes a table cell: inert text (`text`), pipes, and newlines folded to spaces.
 fn cell(s: &str) -> String {
-    s.replace('|', "\\|").replace(['\n', '\r'], " ")
+    text(s).replace('|', "\\|").replace(['\n', '\r'], " ")
 }
 
 /// Renders a table (folded when longer than `open_below` rows).
 pub fn table(t: &Table, open_below: usize) -> String {
-    let mut s = format!("#### {}\n\n{}\n\n", t.title, t.note);
+    let mut s = format!("#### {}\n\n{}\n\n", text(&t.title), text(&t.note));
     if t.rows.is_empty() {
         s.push_str("_no rows_\n\n");
         return s;
@@ -64,13 +86,13 @@ pub fn table(t: &Table, open_below: usize) -> String {
 }
 
 fn case_section(c: &CaseSection, env: &str, svg_dir: &str) -> String {
-    let mut s = format!("## {}", c.name);
+    let mut s = format!("## {}", text(&c.name));
     if !c.title.is_empty() {
-        s.push_str(&format!(" — {}", c.title));
+        s.push_str(&format!(" — {}", text(&c.title)));
     }
     s.push_str(&format!("\n\n`{env}`\n\n### What this shows\n\n"));
     for sentence in &c.narrative {
-        s.push_str(&format!("- {sentence}\n"));
+        s.push_str(&format!("- {}\n", text(sentence)));
     }
     s.push('\n');
     if let Some(g) = &c.gates {
@@ -84,7 +106,7 @@ fn case_section(c: &CaseSection, env: &str, svg_dir: &str) -> String {
     if let Some(st) = &c.stability {
         s.push_str(&format!("### Stability\n\n`{}`\n\n", st.env_line));
         for sentence in &st.text {
-            s.push_str(&format!("- {sentence}\n"));
+            s.push_str(&format!("- {}\n", text(sentence)));
         }
         s.push('\n');
         for t in st.tables() {
@@ -100,7 +122,7 @@ fn case_section(c: &CaseSection, env: &str, svg_dir: &str) -> String {
             .sum::<usize>();
     s.push_str(&format!(
         "Plots ({n}): `{svg_dir}/{}/` and `index.html`.\n\n",
-        c.name
+        c.name.replace('`', "'")
     ));
     s
 }
@@ -127,6 +149,20 @@ pub fn render(page: &Page) -> String {
 mod tests {
     use super::*;
     use crate::report::tables::Cell;
+
+    /// Text is inert for a Markdown renderer: tags, comments, declarations and entities are
+    /// escaped, comparisons and lone ampersands read as written.
+    #[test]
+    fn text_is_inert() {
+        assert_eq!(text("<img src=x>"), "&lt;img src=x>");
+        assert_eq!(text("</b><!-- x --><?p"), "&lt;/b>&lt;!-- x -->&lt;?p");
+        assert_eq!(text("&amp; &#60;"), "&amp;amp; &amp;#60;");
+        assert_eq!(
+            text("error <= 1e-6 & drift < 2"),
+            "error <= 1e-6 & drift < 2"
+        );
+        assert_eq!(cell("a|<i>"), "a\\|&lt;i>");
+    }
 
     /// Cells escape pipes, gated cells carry their verdict, long tables fold.
     #[test]

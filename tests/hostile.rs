@@ -1,0 +1,202 @@
+//! Bounded behaviour on hostile input and faults (issue 10), through the command line: a closed
+//! stdout (EPIPE) never panics and never changes the exit status or the files written; HTML in
+//! a case or scene name is inert in `summary.md` as in `index.html`; summaries with duplicate
+//! runs, impossible statuses or negative errors are unusable input naming the record.
+mod common;
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_mbdbench"))
+}
+
+/// Runs the binary with its stdout's reader already gone: returns the exit code and stderr.
+fn with_closed_stdout(args: &[&str]) -> (Option<i32>, String) {
+    let mut child = bin()
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The parent held the only read end: every write of the child now fails with EPIPE.
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    (
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+/// A small quick run (one scene, one variant) into `dir`.
+fn small_run(dir: &Path) {
+    let o = bin()
+        .args([
+            "run",
+            "--quick",
+            "--case",
+            "nine_spring",
+            "--scene",
+            "two_angles",
+        ])
+        .args([
+            "--param",
+            "so3",
+            "--integrator",
+            "rk4",
+            "--formulation",
+            "body",
+        ])
+        .args(["--jobs", "1", "--out"])
+        .arg(dir)
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// Every command that prints to stdout ends with its normal status when stdout is closed:
+/// no panic (exit 101), no exit 2, and its files are still written.
+#[test]
+fn closed_stdout_is_quiet() {
+    let dir = common::temp_dir("epipe");
+    let out = dir.join("run");
+    let summary = out.join("summary.json");
+    for (args, code) in [
+        (vec!["list"], 0),
+        (vec!["list", "--json"], 0),
+        (vec!["reference", "--check", "--case", "nine_spring"], 0),
+    ] {
+        let (c, err) = with_closed_stdout(&args);
+        assert_eq!(c, Some(code), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+    // `run` prints its table after writing the summary.
+    let s_out = out.to_str().unwrap();
+    let (c, err) = with_closed_stdout(&[
+        "run",
+        "--quick",
+        "--case",
+        "nine_spring",
+        "--scene",
+        "two_angles",
+        "--param",
+        "so3",
+        "--integrator",
+        "rk4",
+        "--formulation",
+        "body",
+        "--jobs",
+        "1",
+        "--out",
+        s_out,
+    ]);
+    assert_eq!(c, Some(0), "run: {err}");
+    assert!(summary.is_file());
+    let s = summary.to_str().unwrap();
+    let (c, err) = with_closed_stdout(&["report", "--summary", s]);
+    assert_eq!(c, Some(0), "report: {err}");
+    assert!(out.join("index.html").is_file() && out.join("summary.md").is_file());
+    let (c, err) = with_closed_stdout(&["gate", "--summary", s, "--quick"]);
+    assert!(matches!(c, Some(0) | Some(1)), "gate: {c:?} {err}");
+    assert!(!err.contains("panicked"), "gate: {err}");
+}
+
+/// HTML in a summary's case and scene names is escaped in `summary.md`, as in `index.html`:
+/// no tag reaches the Markdown renderer.
+#[test]
+fn summary_md_escapes_names() {
+    let dir = common::temp_dir("md-escape");
+    small_run(&dir);
+    let p = dir.join("summary.json");
+    let text = std::fs::read_to_string(&p).unwrap();
+    let hostile = text.replace("\"two_angles\"", "\"<img src=x onerror=alert(1)>\"");
+    assert_ne!(hostile, text);
+    std::fs::write(&p, hostile).unwrap();
+    let o = bin()
+        .args(["report", "--summary"])
+        .arg(&p)
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    for f in ["summary.md", "index.html"] {
+        let t = std::fs::read_to_string(dir.join(f)).unwrap();
+        assert!(!t.contains("<img"), "{f} holds a raw tag");
+        assert!(t.contains("&lt;img"), "{f} lost the name");
+    }
+}
+
+/// An edit of a summary's JSON.
+type Edit = Box<dyn Fn(&mut serde_json::Value)>;
+
+/// A summary with a run twice, a failed run without its failure, a failure on an ok run or a
+/// negative error is unusable input: `gate` and `report` exit 2 naming the file and the
+/// record, and `report` writes nothing.
+#[test]
+fn impossible_summaries_exit_2() {
+    let dir = common::temp_dir("bad-summary");
+    small_run(&dir);
+    let p = dir.join("summary.json");
+    let good: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
+    let ok_index = good["records"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|r| r["status"] == "ok")
+        .expect("an ok record");
+    let edits: Vec<(&str, Edit)> = vec![
+        (
+            "is the same run as records[",
+            Box::new(|s: &mut serde_json::Value| {
+                let r = s["records"][0].clone();
+                s["records"].as_array_mut().unwrap().push(r);
+            }),
+        ),
+        (
+            "status `failed` without a `failure`",
+            Box::new(move |s: &mut serde_json::Value| {
+                s["records"][ok_index]["status"] = "failed".into();
+            }),
+        ),
+        (
+            "a `failure` on a run that did not fail",
+            Box::new(move |s: &mut serde_json::Value| {
+                s["records"][ok_index]["failure"] =
+                    serde_json::json!({"kind": "non_finite", "t": 0.5, "message": "x"});
+            }),
+        ),
+        (
+            "metric `rotation_error_max` is negative",
+            Box::new(move |s: &mut serde_json::Value| {
+                s["records"][ok_index]["metrics"]["rotation_error_max"] = (-1.0).into();
+            }),
+        ),
+    ];
+    for (says, edit) in edits {
+        let case = common::temp_dir("bad-summary-case");
+        let mut s = good.clone();
+        edit(&mut s);
+        let f = case.join("summary.json");
+        std::fs::write(&f, serde_json::to_string_pretty(&s).unwrap()).unwrap();
+        for cmd in ["gate", "report"] {
+            let o = bin().args([cmd, "--summary"]).arg(&f).output().unwrap();
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{cmd} {says}: {err}");
+            assert!(
+                err.contains("summary.json") && err.contains(says),
+                "{cmd}: {err}"
+            );
+        }
+        assert!(!case.join("index.html").exists() && !case.join("summary.md").exists());
+    }
+}
