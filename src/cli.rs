@@ -84,7 +84,8 @@ pub struct RunArgs {
     /// Only the quick tier of each ladder.
     #[arg(long)]
     pub quick: bool,
-    /// Parallel jobs (default: available cores).
+    /// Parallel jobs (default and 0: all available cores; more than the cores is clamped to
+    /// them, with a notice).
     #[arg(long)]
     pub jobs: Option<usize>,
     /// Output folder.
@@ -120,7 +121,8 @@ pub struct StabilityArgs {
     /// Only the quick tier (the cases' `[stability].quick` scenes, a shorter ladder).
     #[arg(long)]
     pub quick: bool,
-    /// Parallel jobs (default: available cores).
+    /// Parallel jobs (default and 0: all available cores; more than the cores is clamped to
+    /// them, with a notice).
     #[arg(long)]
     pub jobs: Option<usize>,
     /// Output folder.
@@ -197,12 +199,21 @@ fn load_cases(common: &Common) -> Result<Vec<Case>, String> {
     .map_err(|e| e.to_string())
 }
 
+/// The worker count: all available cores by default and for `--jobs 0`; a request above the
+/// core count is clamped to it with a notice on stderr (more workers than cores only add
+/// contention, and a thread per job of `--jobs 100000` exhausts the machine).
 fn jobs_or_default(j: Option<usize>) -> usize {
-    j.unwrap_or_else(|| {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    })
+    let cores = std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1);
+    match j {
+        None | Some(0) => cores,
+        Some(n) if n > cores => {
+            eprintln!("note: --jobs {n} is more than the {cores} available cores; using {cores}");
+            cores
+        }
+        Some(n) => n,
+    }
 }
 
 /// Runs the parsed command line; returns the exit code. Errors are printed to stderr.

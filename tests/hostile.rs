@@ -200,3 +200,143 @@ fn impossible_summaries_exit_2() {
         assert!(!case.join("index.html").exists() && !case.join("summary.md").exists());
     }
 }
+
+/// Loading is at worst O(n log n) in the file size: a ladder of 1e6 distinct tolerances loads
+/// (`list` exits 0) within the test's time, and a repeat in it is still found and named.
+#[test]
+fn huge_ladder_loads() {
+    let text = std::fs::read_to_string(
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/nine_spring.toml"),
+    )
+    .unwrap();
+    let old = "tol = [1.0e-4, 1.0e-6, 1.0e-8, 1.0e-10, 1.0e-12]";
+    assert!(text.contains(old), "the case file changed");
+    let n = 1_000_000;
+    let list: Vec<String> = (0..n)
+        .map(|k| format!("{:e}", 1e-3 * (1.0 - k as f64 / (2.0 * n as f64))))
+        .collect();
+    for (tag, values, code) in [
+        ("ladder-1e6", list.join(", "), 0),
+        ("ladder-1e6-repeat", format!("{}, 1e-3", list.join(", ")), 2),
+    ] {
+        let dir = common::temp_dir(tag);
+        std::fs::write(
+            dir.join("nine_spring.toml"),
+            text.replace(old, &format!("tol = [{values}]")),
+        )
+        .unwrap();
+        let o = bin().args(["list", "--cases"]).arg(&dir).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(code), "{tag}: {err}");
+        if code == 2 {
+            assert!(
+                err.contains(&format!("tol[{n}]")) && err.contains("appears twice"),
+                "{err}"
+            );
+        }
+    }
+}
+
+/// Runs the binary, killing it after `guard_s` (a hang guard, not a timing assertion):
+/// returns the exit code (None when killed or signalled) and stderr.
+fn run_guarded(args: &[&std::ffi::OsStr], guard_s: u64) -> (Option<i32>, String) {
+    let mut child = bin()
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let t0 = std::time::Instant::now();
+    loop {
+        if let Some(_status) = child.try_wait().unwrap() {
+            let o = child.wait_with_output().unwrap();
+            return (
+                o.status.code(),
+                String::from_utf8_lossy(&o.stderr).into_owned(),
+            );
+        }
+        if t0.elapsed().as_secs() > guard_s {
+            child.kill().unwrap();
+            let _ = child.wait();
+            return (None, "killed by the hang guard".into());
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+}
+
+/// `report` reads series only from inside the summary's folder: a record whose `series` is
+/// `/dev/zero` (an endless file) or leaves the folder (`../..`) is drawn as "no series file",
+/// and the report completes.
+#[test]
+fn report_reads_series_only_inside_its_folder() {
+    let dir = common::temp_dir("series-escape");
+    small_run(&dir);
+    std::fs::remove_dir_all(dir.join("series")).unwrap();
+    let p = dir.join("summary.json");
+    let mut s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
+    for (k, r) in s["records"].as_array_mut().unwrap().iter_mut().enumerate() {
+        r["series"] = if k % 2 == 0 {
+            "/dev/zero"
+        } else {
+            "../../../../dev/zero"
+        }
+        .into();
+    }
+    std::fs::write(&p, serde_json::to_string_pretty(&s).unwrap()).unwrap();
+    let (code, err) = run_guarded(
+        &["report".as_ref(), "--summary".as_ref(), p.as_os_str()],
+        120,
+    );
+    assert_eq!(code, Some(0), "{err}");
+    let md = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    assert!(
+        md.contains("no series file"),
+        "the missing series are not named"
+    );
+}
+
+/// `--jobs 0` means every core and a request far above the core count is clamped with a
+/// notice: the run completes and records at most the machine's cores as its threads.
+#[test]
+fn jobs_are_clamped() {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    for jobs in ["0", "100000"] {
+        let dir = common::temp_dir(&format!("jobs-{jobs}"));
+        let words = [
+            "run",
+            "--quick",
+            "--case",
+            "nine_spring",
+            "--scene",
+            "two_angles",
+            "--param",
+            "so3",
+            "--integrator",
+            "rk4",
+            "--formulation",
+            "body",
+            "--jobs",
+            jobs,
+            "--out",
+        ];
+        let args: Vec<&std::ffi::OsStr> = words
+            .iter()
+            .map(|s| s.as_ref())
+            .chain([dir.as_os_str()])
+            .collect();
+        let (code, err) = run_guarded(&args, 300);
+        assert_eq!(code, Some(0), "--jobs {jobs}: {err}");
+        if jobs != "0" {
+            assert!(err.contains("more than the"), "{err}");
+        }
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(
+            s["env"]["threads"].as_u64(),
+            Some(cores as u64),
+            "--jobs {jobs}"
+        );
+    }
+}

@@ -361,9 +361,21 @@ fn scene_view<'a>(
     }
 }
 
+/// Whether `rel` stays inside the folder it is joined to: relative, and made only of plain
+/// names (no `..`, no root, no drive prefix).
+fn inside(rel: &Path) -> bool {
+    rel.components()
+        .all(|c| matches!(c, std::path::Component::Normal(_)))
+}
+
+/// The largest series file the report reads (bytes): a series holds a few numbers per score
+/// time; anything larger is not one, and reading it would bound nothing.
+pub const MAX_SERIES_BYTES: u64 = 1 << 30;
+
 /// Where a run's series file may be: `root/<case>/<scene>/<id>.json` (root = the summary's
 /// `series/` directory), else the record's own relative path under `root` or under `root`'s
-/// parent (root = the summary's directory).
+/// parent (root = the summary's directory). Only paths inside those folders: a record's
+/// `series`, case or scene that would leave them (absolute, `..`) is ignored.
 pub fn series_candidates(root: &Path, r: &Record) -> Vec<PathBuf> {
     let id = run_id(
         &r.key.param,
@@ -372,12 +384,14 @@ pub fn series_candidates(root: &Path, r: &Record) -> Vec<PathBuf> {
         r.dt,
         r.tol,
     );
-    let mut out = vec![
-        root.join(&r.key.case)
-            .join(&r.key.scene)
-            .join(format!("{id}.json")),
-    ];
-    if let Some(rel) = &r.series {
+    let mut out = vec![];
+    let own = Path::new(&r.key.case)
+        .join(&r.key.scene)
+        .join(format!("{id}.json"));
+    if inside(&own) && own.components().count() == 3 {
+        out.push(root.join(own));
+    }
+    if let Some(rel) = r.series.as_deref().map(Path::new).filter(|p| inside(p)) {
         out.push(root.join(rel));
         if let Some(parent) = root.parent() {
             out.push(parent.join(rel));
@@ -386,9 +400,13 @@ pub fn series_candidates(root: &Path, r: &Record) -> Vec<PathBuf> {
     out
 }
 
-/// A run's series, if its file exists and parses.
+/// A run's series, if its file is a regular file of at most `MAX_SERIES_BYTES` and parses.
 pub fn load_series(root: &Path, r: &Record) -> Option<Series> {
     series_candidates(root, r).into_iter().find_map(|p| {
+        let m = std::fs::metadata(&p).ok()?;
+        if !m.is_file() || m.len() > MAX_SERIES_BYTES {
+            return None;
+        }
         let text = std::fs::read_to_string(p).ok()?;
         serde_json::from_str(&text).ok()
     })
