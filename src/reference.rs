@@ -55,6 +55,39 @@ pub trait Stored: serde::de::DeserializeOwned {
     fn check_columns(&self) -> Result<(), String>;
 }
 
+/// The reference's times are the scene's score times: `t_k = k score_every` for `k = 0..=n`,
+/// `n = t_end / score_every`, each within `1e-12 t_end`. The error names the key (`t`, or
+/// `t[k]`) and is meant to be prefixed with the file (see `grid_error`).
+pub fn check_grid(t: &[f64], t_end: f64, score_every: f64) -> Result<(), String> {
+    let n = crate::case::steps_dividing(t_end, score_every)
+        .ok_or_else(|| format!("score_every {score_every} does not divide t_end {t_end}"))?;
+    if t.len() as u64 != n + 1 {
+        return Err(format!(
+            "key `t` has {} samples; expected {} (0 to {t_end} s every {score_every} s)",
+            t.len(),
+            n + 1
+        ));
+    }
+    let tol = 1e-12 * t_end;
+    for (k, &tk) in t.iter().enumerate() {
+        let want = k as f64 * score_every;
+        if (tk - want).abs() > tol {
+            return Err(format!(
+                "key `t[{k}]` is {tk}; expected {want} (the score times)"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A reference file's error: `message` prefixed with the file's path.
+pub fn grid_error(root: &Path, case: &str, scene: &str, message: String) -> ReferenceError {
+    ReferenceError::Unreadable {
+        path: path(root, case, scene).display().to_string(),
+        message,
+    }
+}
+
 /// Every column as long as `t`, and `t` not empty.
 pub fn columns_fit(n: usize, lens: &[usize]) -> Result<(), String> {
     if n == 0 || lens.iter().any(|l| *l != n) {

@@ -340,3 +340,135 @@ fn jobs_are_clamped() {
         );
     }
 }
+
+/// A copy of the stored references with `nine_spring/two_angles.json` edited.
+fn references_with(tag: &str, edit: &dyn Fn(&mut serde_json::Value)) -> std::path::PathBuf {
+    let src = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("references");
+    let dir = common::temp_dir(tag);
+    for case in std::fs::read_dir(&src).unwrap() {
+        let case = case.unwrap().path();
+        if !case.is_dir() {
+            continue;
+        }
+        let to = dir.join(case.file_name().unwrap());
+        std::fs::create_dir_all(&to).unwrap();
+        for f in std::fs::read_dir(&case).unwrap() {
+            let f = f.unwrap().path();
+            std::fs::copy(&f, to.join(f.file_name().unwrap())).unwrap();
+        }
+    }
+    let p = dir.join("nine_spring/two_angles.json");
+    let mut r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
+    edit(&mut r);
+    std::fs::write(&p, serde_json::to_string_pretty(&r).unwrap()).unwrap();
+    dir
+}
+
+/// A reference that would read as perfect or as another grid is refused on load, by
+/// `reference --check` and by `run`, with an error naming the file and the key: zero
+/// quaternions, a shifted or short time grid, an absurd accuracy claim.
+#[test]
+fn hostile_references_are_refused() {
+    let cases: Vec<(&str, &str, Edit)> = vec![
+        (
+            "ref-zero-q",
+            "`quaternion[0]` has norm 0",
+            Box::new(|r: &mut serde_json::Value| {
+                for q in r["quaternion"].as_array_mut().unwrap() {
+                    *q = serde_json::json!([0.0, 0.0, 0.0, 0.0]);
+                }
+            }),
+        ),
+        (
+            "ref-shifted-t",
+            "`t[0]` is 0.001",
+            Box::new(|r: &mut serde_json::Value| {
+                for t in r["t"].as_array_mut().unwrap() {
+                    *t = (t.as_f64().unwrap() + 1e-3).into();
+                }
+            }),
+        ),
+        (
+            "ref-short",
+            "key `t` has 100 samples; expected 101",
+            Box::new(|r: &mut serde_json::Value| {
+                for key in [
+                    "t",
+                    "position",
+                    "quaternion",
+                    "velocity",
+                    "omega_body",
+                    "energy",
+                ] {
+                    r[key].as_array_mut().unwrap().pop();
+                }
+            }),
+        ),
+        (
+            "ref-claim",
+            "`accuracy_claim.rotation` is 1e308",
+            Box::new(|r: &mut serde_json::Value| {
+                r["accuracy_claim"]["rotation"] = 1e308.into();
+            }),
+        ),
+    ];
+    for (tag, says, edit) in cases {
+        let refs = references_with(tag, &*edit);
+        let runs = [
+            vec![
+                "reference",
+                "--check",
+                "--case",
+                "nine_spring",
+                "--scene",
+                "two_angles",
+            ],
+            vec![
+                "run",
+                "--quick",
+                "--case",
+                "nine_spring",
+                "--scene",
+                "two_angles",
+                "--param",
+                "so3",
+                "--integrator",
+                "rk4",
+                "--formulation",
+                "body",
+                "--jobs",
+                "1",
+            ],
+        ];
+        for args in runs {
+            let out = common::temp_dir(&format!("{tag}-out"));
+            let o = bin()
+                .args(&args)
+                .arg("--references")
+                .arg(&refs)
+                .args(if args[0] == "run" {
+                    vec!["--out"]
+                } else {
+                    vec![]
+                })
+                .args(if args[0] == "run" {
+                    vec![out.as_os_str()]
+                } else {
+                    vec![]
+                })
+                .output()
+                .unwrap();
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{tag} {}: {err}", args[0]);
+            assert!(
+                err.contains("two_angles.json") && err.contains(says),
+                "{tag}: {err}"
+            );
+            assert!(
+                !out.join("summary.json").exists(),
+                "{tag}: output left behind"
+            );
+        }
+    }
+}

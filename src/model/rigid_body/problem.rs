@@ -43,6 +43,20 @@ impl RigidProblem {
     }
 }
 
+impl RigidProblem {
+    /// The stored reference of the scene, its values valid (`Reference::check_columns`) and
+    /// its times the scene's score times; errors name the file and key.
+    fn load_reference(&self, root: &Path) -> Result<Loaded, String> {
+        let p = &self.plan;
+        let l = reference::load(root, &p.case, &p.scene, &p.inputs_sha256)
+            .map_err(|e| e.to_string())?;
+        let g = &p.setup.grid;
+        crate::reference::check_grid(&l.reference.t, g.t_end, g.score_every)
+            .map_err(|m| crate::reference::grid_error(root, &p.case, &p.scene, m).to_string())?;
+        Ok(l)
+    }
+}
+
 /// The registry's variant behind a family variant.
 fn registered(v: &Variant) -> &'static registry::Variant {
     &registry::variants()[v.index]
@@ -94,11 +108,7 @@ impl Problem for RigidProblem {
         registry::scene_na_reason(registered(v), &self.plan.setup.body)
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
-        let p = &self.plan;
-        self.reference = Some(
-            reference::load(root, &p.case, &p.scene, &p.inputs_sha256)
-                .map_err(|e| e.to_string())?,
-        );
+        self.reference = Some(self.load_reference(root)?);
         Ok(())
     }
     fn reference_sha256(&self) -> Option<&str> {
@@ -157,8 +167,7 @@ impl Problem for RigidProblem {
     }
     fn check_reference(&self, root: &Path) -> Result<(bool, String), String> {
         let p = &self.plan;
-        let stored = reference::load(root, &p.case, &p.scene, &p.inputs_sha256)
-            .map_err(|e| e.to_string())?;
+        let stored = self.load_reference(root)?;
         refgen::check(self.kind, p, &stored.reference)
     }
 }

@@ -92,8 +92,59 @@ impl Stored for Reference {
                 self.omega_body.len(),
                 self.energy.len(),
             ],
-        )
+        )?;
+        finite_values("t", self.t.iter().map(std::slice::from_ref))?;
+        finite_values("position", self.position.iter().map(|x| x.as_slice()))?;
+        finite_values("quaternion", self.quaternion.iter().map(|x| x.as_slice()))?;
+        finite_values("velocity", self.velocity.iter().map(|x| x.as_slice()))?;
+        finite_values("omega_body", self.omega_body.iter().map(|x| x.as_slice()))?;
+        finite_values("energy", self.energy.iter().map(std::slice::from_ref))?;
+        for (k, q) in self.quaternion.iter().enumerate() {
+            let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if (n - 1.0).abs() > UNIT_NORM_TOL {
+                return Err(format!(
+                    "key `quaternion[{k}]` has norm {n:e}; expected a unit quaternion (within \
+                     {UNIT_NORM_TOL:e})"
+                ));
+            }
+        }
+        let c = &self.accuracy_claim;
+        for (key, v) in [
+            ("position", c.position),
+            ("rotation", Some(c.rotation)),
+            ("velocity", c.velocity),
+            ("omega", Some(c.omega)),
+        ] {
+            if let Some(v) = v
+                && !(0.0..=MAX_CLAIM).contains(&v)
+            {
+                return Err(format!(
+                    "key `accuracy_claim.{key}` is {v:e}; expected a finite claim in [0, \
+                     {MAX_CLAIM:e}]"
+                ));
+            }
+        }
+        Ok(())
     }
+}
+
+/// How far a stored quaternion may be from unit norm (the stored ones are within 4.5e-16; a
+/// zero quaternion would score every run as exact: the geodesic of 0 is atan2(0, 0) = 0).
+pub const UNIT_NORM_TOL: f64 = 1e-12;
+
+/// The largest accuracy claim a rigid reference may make (rad, m, m/s, rad/s): the stored ones
+/// are 1.2e-8 at most, and a reference no better than this cannot judge the targets of 1e-6
+/// and below (a claim of 1e308 would make `reference --check` pass anything).
+pub const MAX_CLAIM: f64 = 1e-6;
+
+/// Every number of a column finite; the error names the first bad one by its key.
+fn finite_values<'a>(key: &str, rows: impl Iterator<Item = &'a [f64]>) -> Result<(), String> {
+    for (k, row) in rows.enumerate() {
+        if let Some(x) = row.iter().find(|x| !x.is_finite()) {
+            return Err(format!("key `{key}[{k}]` holds {x}; expected finite numbers"));
+        }
+    }
+    Ok(())
 }
 
 /// Loads and validates a rigid-body reference; stale or malformed files are errors naming

@@ -222,10 +222,14 @@ impl Problem for ChainProblem {
         None
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
-        self.reference = Some(
+        let (r, sha): (ChainReference, String) =
             reference::load_as(root, &self.case, &self.scene, &self.inputs_sha256)
-                .map_err(|e| e.to_string())?,
-        );
+                .map_err(|e| e.to_string())?;
+        let g = &self.setup.grid;
+        reference::check_grid(&r.t, g.t_end, g.score_every).map_err(|m| {
+            reference::grid_error(root, &self.case, &self.scene, m).to_string()
+        })?;
+        self.reference = Some((r, sha));
         Ok(())
     }
     fn reference_sha256(&self) -> Option<&str> {
