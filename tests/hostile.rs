@@ -472,3 +472,57 @@ fn hostile_references_are_refused() {
         }
     }
 }
+
+/// Fixed-length arrays are exactly that length: extra elements of any type, a missing one, a
+/// fourth inertia row or a short row are bad input naming the key (they were dropped or
+/// truncated silently).
+#[test]
+fn fixed_arrays_have_their_length() {
+    let text = std::fs::read_to_string(
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/nine_spring.toml"),
+    )
+    .unwrap();
+    let euler = "euler_xyz = [0.0, 0.5, 1.0]";
+    let inertia = "inertia = [[800.0, -60.0, 40.0], [-60.0, 1000.0, -80.0], [40.0, -80.0, 1200.0]]";
+    assert!(
+        text.contains(euler) && text.contains(inertia),
+        "the case file changed"
+    );
+    for (tag, old, new, says) in [
+        (
+            "arr-long",
+            euler,
+            "euler_xyz = [0.0, 0.5, 1.0, 99.0, \"junk\", [1, 2]]",
+            "euler_xyz: invalid length 6",
+        ),
+        (
+            "arr-short",
+            euler,
+            "euler_xyz = [0.0, 0.5]",
+            "euler_xyz: invalid length 2",
+        ),
+        (
+            "arr-rows",
+            inertia,
+            "inertia = [[800.0, -60.0, 40.0], [-60.0, 1000.0, -80.0], [40.0, -80.0, 1200.0], [1.0, 1.0, 1.0]]",
+            "body.inertia: invalid length 4",
+        ),
+        (
+            "arr-row",
+            inertia,
+            "inertia = [[800.0, -60.0, 40.0], [-60.0, 1000.0], [40.0, -80.0, 1200.0]]",
+            "invalid length 2",
+        ),
+    ] {
+        let dir = common::temp_dir(tag);
+        std::fs::write(dir.join("nine_spring.toml"), text.replacen(old, new, 1)).unwrap();
+        let o = bin().args(["list", "--cases"]).arg(&dir).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{tag}: {err}");
+        assert!(
+            err.contains("nine_spring.toml") && err.contains(says),
+            "{tag}: {err}"
+        );
+        assert!(o.stdout.is_empty(), "{tag}: output on exit 2");
+    }
+}

@@ -38,6 +38,7 @@ use std::path::Path;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
+pub mod exact;
 pub mod gate;
 pub mod hash;
 mod keypath;

@@ -30,12 +30,19 @@ crate::case_schema! {
         spring: Vec<RawSpring>,
     }
     scene RawScene / SceneOwn {
+        #[serde(deserialize_with = "crate::case::exact::array")]
         euler_xyz: [f64; 3],
+        #[serde(default, deserialize_with = "crate::case::exact::option_array")]
         position: Option<[f64; 3]>,
+        #[serde(default, deserialize_with = "crate::case::exact::option_array")]
         velocity: Option<[f64; 3]>,
+        #[serde(default, deserialize_with = "crate::case::exact::option_array")]
         omega: Option<[f64; 3]>,
+        #[serde(default, deserialize_with = "crate::case::exact::option_array")]
         omega_world: Option<[f64; 3]>,
+        #[serde(default, deserialize_with = "crate::case::exact::option_array")]
         angular_momentum_body: Option<[f64; 3]>,
+        #[serde(default, deserialize_with = "crate::case::exact::option_matrix")]
         inertia: Option<[[f64; 3]; 3]>,
     }
 }
@@ -274,15 +281,19 @@ pub fn inputs(case: &Case, scene: &Scene) -> serde_json::Map<String, Value> {
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawBody {
     mass: Option<f64>,
+    #[serde(deserialize_with = "crate::case::exact::matrix")]
     inertia: [[f64; 3]; 3],
     gravity: Option<f64>,
+    #[serde(default, deserialize_with = "crate::case::exact::option_array")]
     pivot_com: Option<[f64; 3]>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawSpring {
+    #[serde(deserialize_with = "crate::case::exact::array")]
     body_point: [f64; 3],
+    #[serde(deserialize_with = "crate::case::exact::array")]
     direction: [f64; 3],
     stiffness: f64,
     rest_length: f64,

@@ -189,7 +189,7 @@ mod tests {
             scene: "s".into(),
             t: vec![0.0, 0.1],
             position: vec![[0.0; 3], [0.1, 0.2, 1.0 / 3.0]],
-            quaternion: vec![[1.0, 0.0, 0.0, 0.0], [0.9, 0.1, 0.0, 0.0]],
+            quaternion: vec![[1.0, 0.0, 0.0, 0.0], [0.6, 0.8, 0.0, 0.0]],
             velocity: vec![[0.0; 3]; 2],
             omega_body: vec![[0.0; 3]; 2],
             energy: vec![1.0, 1.0 + f64::EPSILON],

@@ -15,7 +15,9 @@ crate::case_schema! {
         chain: RawChain,
     }
     scene RawScene / SceneOwn {
+        #[serde(deserialize_with = "crate::case::exact::array")]
         displacement: [f64; 3],
+        #[serde(deserialize_with = "crate::case::exact::array")]
         velocity: [f64; 3],
     }
 }
@@ -24,7 +26,9 @@ crate::case_schema! {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawChain {
+    #[serde(deserialize_with = "crate::case::exact::array")]
     masses: [f64; 3],
+    #[serde(deserialize_with = "crate::case::exact::array")]
     stiffness: [f64; 3],
 }
 
