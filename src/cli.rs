@@ -368,6 +368,7 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
             }
         }
     }
+    crate::reference::check_writable(&a.out)?;
     let opts = RunOptions {
         quick: a.quick,
         jobs: jobs_or_default(a.jobs),
@@ -420,6 +421,7 @@ fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
     }
     // Validates the case and scene names (an unknown one is bad input).
     plan::select(&cases, &a.filters.case, &a.filters.scene)?;
+    crate::reference::check_writable(&a.out)?;
     let opts = crate::stability::StudyOptions {
         quick: a.quick,
         jobs: jobs_or_default(a.jobs),

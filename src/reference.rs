@@ -159,15 +159,47 @@ pub fn load_as<R: Stored>(
 }
 
 /// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
+/// The temporary file is removed when writing or renaming fails (a full disk used to leave
+/// `*.tmp<pid>` behind).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)?;
     }
     let tmp = path.with_extension(format!("tmp{}", std::process::id()));
-    std::fs::write(&tmp, bytes)?;
-    std::fs::rename(&tmp, path).inspect_err(|_| {
-        let _ = std::fs::remove_file(&tmp);
-    })
+    std::fs::write(&tmp, bytes)
+        .and_then(|()| std::fs::rename(&tmp, path))
+        .inspect_err(|_| {
+            let _ = std::fs::remove_file(&tmp);
+        })
+}
+
+/// Checks, before any work, that `dir` can be written: a probe file is written and removed in
+/// `dir`, or, when `dir` does not exist yet, in its nearest existing ancestor (nothing is
+/// created, so bad input found later still leaves nothing behind). An unwritable `--out` used
+/// to be found only after every run was computed. The error names the folder.
+pub fn check_writable(dir: &Path) -> Result<(), String> {
+    let fail =
+        |e: std::io::Error| format!("{}: the output folder is not writable: {e}", dir.display());
+    let mut at = dir;
+    while !at.exists() {
+        match at.parent() {
+            Some(p) if !p.as_os_str().is_empty() => at = p,
+            _ => {
+                at = Path::new(".");
+                break;
+            }
+        }
+    }
+    if !at.is_dir() {
+        return Err(format!(
+            "{}: the output folder is not writable: {} is not a folder",
+            dir.display(),
+            at.display()
+        ));
+    }
+    let probe = at.join(format!(".mbdbench-probe-{}", std::process::id()));
+    std::fs::write(&probe, b"probe").map_err(fail)?;
+    std::fs::remove_file(&probe).map_err(fail)
 }
 
 /// Writes any family's reference file (pretty JSON, round-trip floats) atomically.
@@ -179,6 +211,7 @@ pub fn save_as<R: Serialize>(
 ) -> std::io::Result<PathBuf> {
     let p = path(root, case, scene);
     let text = serde_json::to_string_pretty(r).map_err(std::io::Error::other)?;
-    write_atomic(&p, text.as_bytes())?;
+    write_atomic(&p, text.as_bytes())
+        .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", p.display())))?;
     Ok(p)
 }

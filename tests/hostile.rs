@@ -526,3 +526,57 @@ fn fixed_arrays_have_their_length() {
         assert!(o.stdout.is_empty(), "{tag}: output on exit 2");
     }
 }
+
+/// An output folder that cannot be written (here: below a regular file, which binds root
+/// too) is bad input found before any run (exit 2 naming it, nothing computed), and
+/// `reference` into it names the file it could not write.
+#[test]
+fn unwritable_outputs_are_named_up_front() {
+    let dir = common::temp_dir("unwritable");
+    let file = dir.join("a_file");
+    std::fs::write(&file, b"not a folder").unwrap();
+    let out = file.join("out");
+    for cmd in ["run", "stability"] {
+        let o = bin()
+            .args([
+                cmd,
+                "--quick",
+                "--case",
+                "nine_spring",
+                "--scene",
+                "two_angles",
+            ])
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{cmd}: {err}");
+        assert!(
+            err.contains("not writable") && err.contains("a_file/out"),
+            "{cmd}: {err}"
+        );
+        assert!(
+            !err.contains("runs") && !err.contains("searches"),
+            "{cmd} ran: {err}"
+        );
+    }
+    let o = bin()
+        .args([
+            "reference",
+            "--case",
+            "nine_spring",
+            "--scene",
+            "two_angles",
+            "--references",
+        ])
+        .arg(&file)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "reference: {err}");
+    assert!(
+        err.contains("a_file/nine_spring/two_angles.json"),
+        "reference: {err}"
+    );
+}
