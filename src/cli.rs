@@ -199,6 +199,23 @@ fn load_cases(common: &Common) -> Result<Vec<Case>, String> {
     .map_err(|e| e.to_string())
 }
 
+/// A `--t-end` for a problem: a multiple of its score grid, within the sample budget.
+fn check_t_end(t: f64, p: &dyn problem::Problem) -> Result<(), String> {
+    let Some(n_score) = crate::run::divides(t, p.score_every()) else {
+        return Err(format!(
+            "--t-end {t}: score_every = {} of {}/{} does not divide it",
+            p.score_every(),
+            p.case(),
+            p.scene()
+        ));
+    };
+    let per = crate::run::divides(p.score_every(), p.sample_every()).unwrap_or(1);
+    match crate::case::over_sample_budget(n_score, per) {
+        Some(why) => Err(format!("--t-end {t} for {}/{}: {why}", p.case(), p.scene())),
+        None => Ok(()),
+    }
+}
+
 /// The worker count: all available cores by default and for `--jobs 0`; a request above the
 /// core count is clamped to it with a notice on stderr (more workers than cores only add
 /// contention, and a thread per job of `--jobs 100000` exhausts the machine).
@@ -358,14 +375,7 @@ fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
     }
     if let Some(t) = a.t_end {
         for p in &problems {
-            if crate::run::divides(t, p.score_every()).is_none() {
-                return Err(format!(
-                    "--t-end {t}: score_every = {} of {}/{} does not divide it",
-                    p.score_every(),
-                    p.case(),
-                    p.scene()
-                ));
-            }
+            check_t_end(t, p.as_ref())?;
         }
     }
     crate::reference::check_writable(&a.out)?;
@@ -611,6 +621,7 @@ fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
         if !(t.is_finite() && t > 0.0) {
             return Err(format!("--t-end {t}: must be a positive number"));
         }
+        check_t_end(t, &*p)?;
         p.set_t_end(t);
     }
     if !v.info.adaptive && crate::run::divides(p.score_every(), value).is_none() {

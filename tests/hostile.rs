@@ -580,3 +580,77 @@ fn unwritable_outputs_are_named_up_front() {
         "reference: {err}"
     );
 }
+
+/// Memory is bounded by the sample budget (`case::MAX_SAMPLES`, 1e6 samples a run): a
+/// `--t-end` or a case `sample_every` that would keep more is refused before any run, exit 2
+/// naming the option or key (`--t-end 1e6` kept 1e8 samples, past 14 GB).
+#[test]
+fn sample_budget_is_enforced_up_front() {
+    let dir = common::temp_dir("budget");
+    for cmd in [
+        vec![
+            "run",
+            "--quick",
+            "--case",
+            "gimbal_lock",
+            "--scene",
+            "spin_d0",
+            "--param",
+            "so3",
+            "--integrator",
+            "rk4",
+            "--t-end",
+            "1e6",
+            "--out",
+        ],
+        vec![
+            "trajectory",
+            "--case",
+            "gimbal_lock",
+            "--scene",
+            "spin_d0",
+            "--param",
+            "so3",
+            "--integrator",
+            "rk4",
+            "--dt",
+            "1e-2",
+            "--t-end",
+            "1e6",
+            "--out",
+        ],
+    ] {
+        let out = dir.join(cmd[0]);
+        let o = bin().args(&cmd).arg(&out).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{}: {err}", cmd[0]);
+        assert!(
+            err.contains("--t-end 1000000") && err.contains("at most 1000000"),
+            "{err}"
+        );
+        assert!(!out.exists(), "{}: output left behind", cmd[0]);
+    }
+    let text = std::fs::read_to_string(
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/nine_spring.toml"),
+    )
+    .unwrap();
+    let old = "sample_every = 0.01";
+    assert!(text.contains(old), "the case file changed");
+    let cases = common::temp_dir("budget-case");
+    std::fs::write(
+        cases.join("nine_spring.toml"),
+        text.replacen(old, "sample_every = 1e-7", 1),
+    )
+    .unwrap();
+    let o = bin()
+        .args(["list", "--cases"])
+        .arg(&cases)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("sample_every") && err.contains("at most 1000000"),
+        "{err}"
+    );
+}

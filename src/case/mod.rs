@@ -53,6 +53,23 @@ pub const SCHEMA: i64 = 1;
 /// `max_steps` when a case does not set it.
 pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;
 
+/// The most samples one run keeps in memory (its observations at every `sample_every`,
+/// about 130 bytes each for the rigid body: some 130 MB): a case or `--t-end` that would need
+/// more is refused before any run (the catalogue's largest run keeps 2,001).
+pub const MAX_SAMPLES: u64 = 1_000_000;
+
+/// Why `n_score` score intervals of `samples_per_score` samples each exceed the sample
+/// budget, or None.
+pub fn over_sample_budget(n_score: u64, samples_per_score: u64) -> Option<String> {
+    let n = n_score.saturating_mul(samples_per_score).saturating_add(1);
+    (n > MAX_SAMPLES).then(|| {
+        format!(
+            "{n} samples over the horizon; a run keeps at most {MAX_SAMPLES} (README, \
+             \"Budgets\"): sample less often or shorten t_end"
+        )
+    })
+}
+
 /// The four catalogue files compiled into the binary, sorted by name.
 const EMBEDDED: [(&str, &str); 4] = [
     (
@@ -747,6 +764,12 @@ impl Ctx<'_> {
                 ),
             );
         };
+        if let Some(why) = over_sample_budget(n_score, samples_per_score) {
+            return self.err(key("sample_every"), why);
+        }
+        if let Some(why) = over_sample_budget(n_score, samples_per_score) {
+            return self.err(key("sample_every"), why);
+        }
         if let Some(l) = &s.ladders {
             self.ladders_shape(&key("ladders"), l, false)?;
         }

@@ -291,6 +291,8 @@ pub trait Problem: Send + Sync {
     fn set_t_end(&mut self, t_end: f64);
     /// The score grid spacing (a `--t-end` must be a multiple of it).
     fn score_every(&self) -> f64;
+    /// The sample spacing (at most `case::MAX_SAMPLES` samples per run).
+    fn sample_every(&self) -> f64;
     /// The ladder (steps, or tolerances for an adaptive method) of a method in a tier.
     fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64];
     /// Why a registered variant does not apply to this scene, if it does not.

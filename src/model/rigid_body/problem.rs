@@ -96,6 +96,9 @@ impl Problem for RigidProblem {
     fn score_every(&self) -> f64 {
         self.plan.setup.grid.score_every
     }
+    fn sample_every(&self) -> f64 {
+        self.plan.setup.grid.sample_every
+    }
     fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64] {
         let l = if quick {
             &self.plan.quick

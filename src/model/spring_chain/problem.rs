@@ -215,6 +215,9 @@ impl Problem for ChainProblem {
     fn score_every(&self) -> f64 {
         self.setup.grid.score_every
     }
+    fn sample_every(&self) -> f64 {
+        self.setup.grid.sample_every
+    }
     fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64] {
         if quick { &self.quick } else { &self.ladders }.for_method(info)
     }
