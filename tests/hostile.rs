@@ -654,3 +654,38 @@ fn sample_budget_is_enforced_up_front() {
         "{err}"
     );
 }
+
+/// `reference --check` compares the energy column too: an energy column that does not belong
+/// to the stored states (here 1 % too large) fails the check (exit 1, `FAIL`).
+#[test]
+fn reference_check_compares_energy() {
+    let refs = references_with("ref-energy", &|r: &mut serde_json::Value| {
+        for e in r["energy"].as_array_mut().unwrap() {
+            *e = (e.as_f64().unwrap() * 1.01).into();
+        }
+    });
+    let o = bin()
+        .args([
+            "reference",
+            "--check",
+            "--case",
+            "nine_spring",
+            "--scene",
+            "two_angles",
+        ])
+        .arg("--references")
+        .arg(&refs)
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{out} {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(
+        out.contains("FAIL nine_spring/two_angles") && out.contains("energy column"),
+        "{out}"
+    );
+}

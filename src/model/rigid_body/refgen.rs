@@ -163,6 +163,10 @@ fn exact_track(
     Ok(Track { t, obs })
 }
 
+/// The round-off `reference --check` allows (relative, as the summary's drift) between the
+/// stored energy column and the energy of the stored states, and on top of the stated drift.
+pub const ENERGY_ROUNDOFF: f64 = 1e-14;
+
 /// Tolerance of the cross-check of a numerical reference: `dop853` on `quat_proj`, spatial
 /// formulation (differs from `gauss6/so3/body` in integrator, chart and formulation).
 pub const CROSS_TOL: f64 = 1e-13;
@@ -327,10 +331,36 @@ pub fn check(
         c.velocity.unwrap_or(f64::INFINITY),
         c.omega,
     ];
-    let ok = (0..4).all(|i| d[i] <= claims[i]);
+    // The stored energy column: the energy of the stored states (to round-off, relative as the
+    // summary's drift), and its drift within the reference's own stated energy drift.
+    let scale = stored.energy[0].abs().max(plan.energy_scale);
+    let body = &plan.setup.body;
+    let de = stored_track(stored)
+        .obs
+        .iter()
+        .zip(&stored.energy)
+        .map(|(o, e)| (body.energy(o) - e).abs() / scale)
+        .fold(0.0, f64::max);
+    let drift = crate::metrics::energy_drift::max_relative(&stored.energy, plan.energy_scale);
+    let stated = stored.provenance.energy_drift;
+    let ok = (0..4).all(|i| d[i] <= claims[i])
+        && de <= ENERGY_ROUNDOFF
+        && drift <= stated + ENERGY_ROUNDOFF;
     let msg = format!(
-        "{}/{}: recomputed vs stored: position {:.2e}, rotation {:.2e}, velocity {:.2e}, omega {:.2e} (claims {:.2e}, {:.2e}, {:.2e}, {:.2e})",
-        plan.case, plan.scene, d[0], d[1], d[2], d[3], claims[0], claims[1], claims[2], claims[3]
+        "{}/{}: recomputed vs stored: position {:.2e}, rotation {:.2e}, velocity {:.2e}, omega {:.2e} (claims {:.2e}, {:.2e}, {:.2e}, {:.2e}); energy column vs its states {:.2e}, its drift {:.2e} (stated {:.2e})",
+        plan.case,
+        plan.scene,
+        d[0],
+        d[1],
+        d[2],
+        d[3],
+        claims[0],
+        claims[1],
+        claims[2],
+        claims[3],
+        de,
+        drift,
+        stated
     );
     Ok((ok, msg))
 }
