@@ -28,26 +28,29 @@ fn with_closed_stdout(args: &[&str]) -> (Option<i32>, String) {
     )
 }
 
+/// A small quick run: one scene, one variant, one worker (`--out` to be added).
+const SMALL_RUN: &[&str] = &[
+    "run",
+    "--quick",
+    "--case",
+    "nine_spring",
+    "--scene",
+    "two_angles",
+    "--param",
+    "so3",
+    "--integrator",
+    "rk4",
+    "--formulation",
+    "body",
+    "--jobs",
+    "1",
+];
+
 /// A small quick run (one scene, one variant) into `dir`.
 fn small_run(dir: &Path) {
     let o = bin()
-        .args([
-            "run",
-            "--quick",
-            "--case",
-            "nine_spring",
-            "--scene",
-            "two_angles",
-        ])
-        .args([
-            "--param",
-            "so3",
-            "--integrator",
-            "rk4",
-            "--formulation",
-            "body",
-        ])
-        .args(["--jobs", "1", "--out"])
+        .args(SMALL_RUN)
+        .arg("--out")
         .arg(dir)
         .output()
         .unwrap();
@@ -77,24 +80,8 @@ fn closed_stdout_is_quiet() {
     }
     // `run` prints its table after writing the summary.
     let s_out = out.to_str().unwrap();
-    let (c, err) = with_closed_stdout(&[
-        "run",
-        "--quick",
-        "--case",
-        "nine_spring",
-        "--scene",
-        "two_angles",
-        "--param",
-        "so3",
-        "--integrator",
-        "rk4",
-        "--formulation",
-        "body",
-        "--jobs",
-        "1",
-        "--out",
-        s_out,
-    ]);
+    let args: Vec<&str> = SMALL_RUN.iter().copied().chain(["--out", s_out]).collect();
+    let (c, err) = with_closed_stdout(&args);
     assert_eq!(c, Some(0), "run: {err}");
     assert!(summary.is_file());
     let s = summary.to_str().unwrap();
@@ -303,25 +290,12 @@ fn jobs_are_clamped() {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     for jobs in ["0", "100000"] {
         let dir = common::temp_dir(&format!("jobs-{jobs}"));
-        let words = [
-            "run",
-            "--quick",
-            "--case",
-            "nine_spring",
-            "--scene",
-            "two_angles",
-            "--param",
-            "so3",
-            "--integrator",
-            "rk4",
-            "--formulation",
-            "body",
-            "--jobs",
-            jobs,
-            "--out",
-        ];
-        let args: Vec<&std::ffi::OsStr> = words
+        // The small run with its worker count replaced by `jobs`.
+        let n = SMALL_RUN.len();
+        let tail = [jobs, "--out"];
+        let args: Vec<&std::ffi::OsStr> = SMALL_RUN[..n - 1]
             .iter()
+            .chain(&tail)
             .map(|s| s.as_ref())
             .chain([dir.as_os_str()])
             .collect();
@@ -424,22 +398,7 @@ fn hostile_references_are_refused() {
                 "--scene",
                 "two_angles",
             ],
-            vec![
-                "run",
-                "--quick",
-                "--case",
-                "nine_spring",
-                "--scene",
-                "two_angles",
-                "--param",
-                "so3",
-                "--integrator",
-                "rk4",
-                "--formulation",
-                "body",
-                "--jobs",
-                "1",
-            ],
+            SMALL_RUN.to_vec(),
         ];
         for args in runs {
             let out = common::temp_dir(&format!("{tag}-out"));

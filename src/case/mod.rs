@@ -38,38 +38,20 @@ use std::path::Path;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
+pub mod budget;
 pub mod exact;
 pub mod gate;
 pub mod hash;
 mod keypath;
 pub mod ladder;
 
+pub use budget::{DEFAULT_MAX_STEPS, MAX_SAMPLES, over_sample_budget};
 pub use gate::{Bound, Gate, GateWhere, RawGate};
 pub use hash::{canonical_json, inputs_sha256, inputs_value};
 pub use ladder::{DIVIDES_REL_TOL, FixedStep, Ladder, OrderClass, RawLadders, steps_dividing};
 
 /// The only schema version this loader reads.
 pub const SCHEMA: i64 = 1;
-/// `max_steps` when a case does not set it.
-pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;
-
-/// The most samples one run keeps in memory (its observations at every `sample_every`,
-/// about 130 bytes each for the rigid body: some 130 MB): a case or `--t-end` that would need
-/// more is refused before any run (the catalogue's largest run keeps 2,001).
-pub const MAX_SAMPLES: u64 = 1_000_000;
-
-/// Why `n_score` score intervals of `samples_per_score` samples each exceed the sample
-/// budget, or None.
-pub fn over_sample_budget(n_score: u64, samples_per_score: u64) -> Option<String> {
-    let n = n_score.saturating_mul(samples_per_score).saturating_add(1);
-    (n > MAX_SAMPLES).then(|| {
-        format!(
-            "{n} samples over the horizon; a run keeps at most {MAX_SAMPLES} (README, \
-             \"Budgets\"): sample less often or shorten t_end"
-        )
-    })
-}
-
 /// The four catalogue files compiled into the binary, sorted by name.
 const EMBEDDED: [(&str, &str); 4] = [
     (

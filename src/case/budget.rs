@@ -1,0 +1,47 @@
+//! The work and memory budgets every case shares (README, "Budgets"): the default step budget
+//! of a run and the most samples one run keeps in memory. A case or `--t-end` over the sample
+//! budget is refused before any run, naming the key or option; a run over its step or RHS
+//! budget ends as a typed `work_limit` (`integrate::Limits`).
+//!
+//! # Example
+//!
+//! ```
+//! use mbdbench::case::{MAX_SAMPLES, over_sample_budget};
+//!
+//! assert!(over_sample_budget(1000, 10).is_none()); // 10,001 samples
+//! let why = over_sample_budget(MAX_SAMPLES, 1).unwrap(); // one sample too many
+//! assert!(why.contains("at most 1000000"));
+//! ```
+
+/// `max_steps` when a case does not set it.
+pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;
+
+/// The most samples one run keeps in memory (its observations at every `sample_every`,
+/// 136 bytes each for the rigid body: 136 MB): a case or `--t-end` that would need
+/// more is refused before any run (the catalogue's largest run keeps 2,001).
+pub const MAX_SAMPLES: u64 = 1_000_000;
+
+/// Why `n_score` score intervals of `samples_per_score` samples each exceed the sample
+/// budget, or None.
+pub fn over_sample_budget(n_score: u64, samples_per_score: u64) -> Option<String> {
+    let n = n_score.saturating_mul(samples_per_score).saturating_add(1);
+    (n > MAX_SAMPLES).then(|| {
+        format!(
+            "{n} samples over the horizon; a run keeps at most {MAX_SAMPLES} (README, \
+             \"Budgets\"): sample less often or shorten t_end"
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A full sample budget of the rigid body's observations fits in 200 MB (the issue's bound
+    /// on a run's peak memory), so the budget is what bounds memory.
+    #[test]
+    fn sample_budget_fits_in_200_mb() {
+        let bytes = std::mem::size_of::<crate::run::Sample>() as u64 * MAX_SAMPLES;
+        assert!(bytes <= 200 << 20, "{bytes} bytes");
+    }
+}
