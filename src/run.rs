@@ -581,7 +581,7 @@ pub fn run_adaptive<S: Observable + Clone, M: Adaptive<Watched<S>>>(
         n_out,
         &mut on_output,
         &mut out.stats,
-        limits,
+        &limits.adaptive(),
     );
     let c = f64::from_bits(w.min_bits.load(std::sync::atomic::Ordering::Relaxed));
     out.conditioning_min = out.conditioning_min.min(c);

@@ -296,8 +296,10 @@ pub fn run_catalogue(
     // (measured, README "Benchmarks").
     if opts.repeats > 0 {
         let timing = Progress::new(total, "timing", opts.progress);
+        // A failed run is not timed: its wall time says nothing about the method, and a run
+        // that ends at its work budget would cost that budget again per repeat.
         let time_one = |job: &Job, d: &mut Done| {
-            if d.series.is_some() {
+            if d.series.is_some() && d.record.status == Status::Ok {
                 let p = &*problems[job.problem];
                 d.record.wall_s = time_run(p, job.variant, job.value, opts.repeats);
             }

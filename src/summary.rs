@@ -81,6 +81,8 @@ pub struct Record {
     #[serde(skip_serializing_if = "BTreeMap::is_empty", default)]
     pub metric_reasons: BTreeMap<String, String>,
     pub stats: Stats,
+    /// The timing pass's wall times; null for a failed or `n/a` run (never timed) and when
+    /// the timing pass was skipped.
     pub wall_s: Option<Wall>,
     pub inputs_sha256: String,
     pub reference_sha256: Option<String>,

@@ -648,3 +648,61 @@ fn reference_check_compares_energy() {
         "{out}"
     );
 }
+
+/// A diverging adaptive run ends within its RHS budget: `se3_hq/dopri5` at `tol = 0.5` on
+/// `nine_spring/two_angles` blows up near t = 6 s and crawled on steps of 1e-7 s to its 1e8-step
+/// budget (7.8e8 evaluations, 413 s); it now ends as a typed `work_limit` (or
+/// `step_size_underflow`) within the default adaptive budget of 1e6 evaluations, and the
+/// timing pass does not run it again (`wall_s` is null).
+#[test]
+fn diverging_adaptive_run_is_bounded() {
+    let text = std::fs::read_to_string(
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/nine_spring.toml"),
+    )
+    .unwrap();
+    let old = "tol = [1.0e-6] }";
+    assert!(text.contains(old), "the case file changed");
+    let cases = common::temp_dir("diverging-case");
+    std::fs::write(
+        cases.join("nine_spring.toml"),
+        text.replacen(old, "tol = [0.5] }", 1),
+    )
+    .unwrap();
+    let out = common::temp_dir("diverging-out");
+    let o = bin()
+        .args([
+            "run",
+            "--quick",
+            "--case",
+            "nine_spring",
+            "--scene",
+            "two_angles",
+        ])
+        .args([
+            "--param",
+            "se3_hq",
+            "--integrator",
+            "dopri5",
+            "--formulation",
+            "body",
+        ])
+        .args(["--jobs", "1", "--cases"])
+        .arg(&cases)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    // A typed failure is a result, not a fault of the command: exit 0.
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    let s: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    let recs = s["records"].as_array().unwrap();
+    assert_eq!(recs.len(), 1);
+    let r = &recs[0];
+    let kind = r["failure"]["kind"].as_str().unwrap();
+    assert!(kind == "work_limit" || kind == "step_size_underflow", "{r}");
+    let evals = r["stats"]["rhs_evals"].as_u64().unwrap();
+    assert!(evals <= 1_000_000, "{evals} RHS evaluations");
+    assert!(r["wall_s"].is_null(), "a failed run was timed: {r}");
+}

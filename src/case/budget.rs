@@ -16,6 +16,17 @@
 /// `max_steps` when a case does not set it.
 pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;
 
+/// `max_rhs_evals` (every run) when a case does not set it: a fixed-step run is bounded by
+/// `max_steps` before it starts, so this only stops a runaway Newton iteration count.
+pub const DEFAULT_MAX_RHS_EVALS: u64 = 2_000_000_000;
+
+/// `max_adaptive_rhs_evals` when a case does not set it: the RHS budget of an adaptive run,
+/// whose work is not known up front. The catalogue's costliest adaptive run takes 251,741
+/// (`gimbal_lock/spin_d1e-8`, `euler_zyx/dop853` at tol 1e-12); a run that diverges at a
+/// loose tolerance crawls on steps of 1e-7 s and would take 1e8 steps (`se3_hq/dopri5` at
+/// tol 0.5 on `nine_spring/two_angles`: 7.8e8 evaluations, 413 s).
+pub const DEFAULT_MAX_ADAPTIVE_RHS_EVALS: u64 = 1_000_000;
+
 /// The most samples one run keeps in memory (its observations at every `sample_every`,
 /// 136 bytes each for the rigid body: 136 MB): a case or `--t-end` that would need
 /// more is refused before any run (the catalogue's largest run keeps 2,001).

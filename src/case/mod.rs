@@ -45,7 +45,10 @@ pub mod hash;
 mod keypath;
 pub mod ladder;
 
-pub use budget::{DEFAULT_MAX_STEPS, MAX_SAMPLES, over_sample_budget};
+pub use budget::{
+    DEFAULT_MAX_ADAPTIVE_RHS_EVALS, DEFAULT_MAX_RHS_EVALS, DEFAULT_MAX_STEPS, MAX_SAMPLES,
+    over_sample_budget,
+};
 pub use gate::{Bound, Gate, GateWhere, RawGate};
 pub use hash::{canonical_json, inputs_sha256, inputs_value};
 pub use ladder::{DIVIDES_REL_TOL, FixedStep, Ladder, OrderClass, RawLadders, steps_dividing};
@@ -176,8 +179,10 @@ pub struct Case {
     pub reference: ReferenceKind,
     /// Per-run step budget (default `DEFAULT_MAX_STEPS`).
     pub max_steps: u64,
-    /// Per-run RHS-evaluation budget (None: the runner's default).
-    pub max_rhs_evals: Option<u64>,
+    /// Per-run RHS-evaluation budget (default `DEFAULT_MAX_RHS_EVALS`).
+    pub max_rhs_evals: u64,
+    /// RHS-evaluation budget of an adaptive run (default `DEFAULT_MAX_ADAPTIVE_RHS_EVALS`).
+    pub max_adaptive_rhs_evals: u64,
     pub scenes: Vec<Scene>,
     pub gates: Vec<Gate>,
     /// `[stability]`: the stability study's settings (None: the case is not in the study).
@@ -239,6 +244,15 @@ impl Scene {
 }
 
 impl Case {
+    /// The case's work budgets, for every run of its scenes.
+    pub fn limits(&self) -> crate::integrate::Limits {
+        crate::integrate::Limits {
+            max_steps: self.max_steps,
+            max_rhs_evals: self.max_rhs_evals,
+            max_adaptive_rhs_evals: self.max_adaptive_rhs_evals,
+        }
+    }
+
     /// The scene named `name`.
     pub fn scene(&self, name: &str) -> Option<&Scene> {
         self.scenes.iter().find(|s| s.name == name)
@@ -403,6 +417,7 @@ pub struct RawShared {
     pub reference: ReferenceKind,
     pub max_steps: Option<f64>,
     pub max_rhs_evals: Option<f64>,
+    pub max_adaptive_rhs_evals: Option<f64>,
     pub ladders: RawLadders,
     pub gates: Vec<RawGate>,
     pub stability: Option<RawStability>,
@@ -452,6 +467,7 @@ macro_rules! case_schema {
             reference: $crate::case::ReferenceKind,
             max_steps: Option<f64>,
             max_rhs_evals: Option<f64>,
+            max_adaptive_rhs_evals: Option<f64>,
             scene: Vec<$Scene>,
             ladders: $crate::case::RawLadders,
             #[serde(default)]
@@ -517,6 +533,7 @@ macro_rules! case_schema {
                         reference: self.reference,
                         max_steps: self.max_steps,
                         max_rhs_evals: self.max_rhs_evals,
+                        max_adaptive_rhs_evals: self.max_adaptive_rhs_evals,
                         ladders: self.ladders,
                         gates: self.gates,
                         stability: self.stability,
@@ -630,10 +647,14 @@ impl Ctx<'_> {
             Some(x) => self.count("max_steps", x)?,
             None => DEFAULT_MAX_STEPS,
         };
-        let max_rhs_evals = raw
-            .max_rhs_evals
-            .map(|x| self.count("max_rhs_evals", x))
-            .transpose()?;
+        let max_rhs_evals = match raw.max_rhs_evals {
+            Some(x) => self.count("max_rhs_evals", x)?,
+            None => DEFAULT_MAX_RHS_EVALS,
+        };
+        let max_adaptive_rhs_evals = match raw.max_adaptive_rhs_evals {
+            Some(x) => self.count("max_adaptive_rhs_evals", x)?,
+            None => DEFAULT_MAX_ADAPTIVE_RHS_EVALS,
+        };
         let physics = case_physics(self)?;
         self.ladders_shape("ladders", &raw.ladders, true)?;
         if scenes.is_empty() {
@@ -686,6 +707,7 @@ impl Ctx<'_> {
             reference: raw.reference,
             max_steps,
             max_rhs_evals,
+            max_adaptive_rhs_evals,
             scenes: out,
             gates,
             stability,

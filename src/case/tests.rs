@@ -62,6 +62,8 @@ fn embedded_files_load() {
     for c in &cases {
         assert_eq!(c.file, format!("cases/{}.toml", c.name));
         assert_eq!(c.max_steps, DEFAULT_MAX_STEPS);
+        assert_eq!(c.max_rhs_evals, DEFAULT_MAX_RHS_EVALS);
+        assert_eq!(c.max_adaptive_rhs_evals, DEFAULT_MAX_ADAPTIVE_RHS_EVALS);
         // Every catalogue case is gated, the quick tier included.
         assert!(
             c.gates.iter().any(|g| g.quick),
@@ -593,4 +595,26 @@ fn load_dir_matches_embedded() {
     std::fs::remove_dir_all(&tmp).unwrap();
     assert_eq!(e.key, "case");
     assert!(e.to_string().contains("other.toml"), "{e}");
+}
+
+/// The adaptive RHS budget is a case key outside the physics hash: a count loads, anything
+/// else is refused naming the key.
+#[test]
+fn adaptive_budget_key() {
+    let line = NINE
+        .lines()
+        .find(|l| l.starts_with("energy_scale"))
+        .unwrap();
+    let with = |v: &str| edited(line, &format!("{line}\nmax_adaptive_rhs_evals = {v}"));
+    let c = load_str(LABEL, &with("2e6")).unwrap();
+    assert_eq!(c.max_adaptive_rhs_evals, 2_000_000);
+    assert_eq!(c.limits().adaptive().max_rhs_evals, 2_000_000);
+    let base = load_str(LABEL, NINE).unwrap();
+    assert_eq!(
+        inputs_sha256(&c, &c.scenes[0]),
+        inputs_sha256(&base, &base.scenes[0])
+    );
+    for bad in ["-1", "0.5", "\"many\""] {
+        error_at(&with(bad), "max_adaptive_rhs_evals");
+    }
 }

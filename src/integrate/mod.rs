@@ -168,18 +168,25 @@ pub struct Stats {
     pub normalizations: u64,
 }
 
-/// Per-run budgets; exceeding one is a `work_limit` failure.
+/// Per-run budgets; exceeding one is a `work_limit` failure. An adaptive run's work is not
+/// known up front (a fixed-step run's is, and is checked against `max_steps` before it
+/// starts): `run::run_adaptive` bounds it by `max_adaptive_rhs_evals` too ([`Limits::adaptive`]),
+/// and the adaptive pairs stop before an attempt that could pass their RHS budget
+/// ([`Limits::room`]), so they never spend more than it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limits {
     pub max_steps: u64,
     pub max_rhs_evals: u64,
+    /// The RHS budget of an adaptive run (default `case::DEFAULT_MAX_ADAPTIVE_RHS_EVALS`).
+    pub max_adaptive_rhs_evals: u64,
 }
 
 impl Default for Limits {
     fn default() -> Self {
         Limits {
-            max_steps: 100_000_000,
-            max_rhs_evals: 2_000_000_000,
+            max_steps: crate::case::DEFAULT_MAX_STEPS,
+            max_rhs_evals: crate::case::DEFAULT_MAX_RHS_EVALS,
+            max_adaptive_rhs_evals: crate::case::DEFAULT_MAX_ADAPTIVE_RHS_EVALS,
         }
     }
 }
@@ -206,6 +213,33 @@ impl Limits {
             ));
         }
         Ok(())
+    }
+
+    /// `work_limit` failure if `evals` more RHS evaluations would pass the RHS budget (an
+    /// adaptive pair calls it before each attempt with the attempt's most evaluations).
+    #[inline]
+    pub fn room(&self, t: f64, stats: &Stats, evals: u64) -> Result<(), Failure> {
+        if stats.rhs_evals.saturating_add(evals) > self.max_rhs_evals {
+            return Err(Failure::new(
+                FailureKind::WorkLimit,
+                t,
+                format!(
+                    "{} RHS evaluations spent; the next attempt's {evals} would pass the \
+                     budget of {} (case keys max_rhs_evals, max_adaptive_rhs_evals)",
+                    stats.rhs_evals, self.max_rhs_evals
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The limits of an adaptive run: the RHS budget is the smaller of `max_rhs_evals` and
+    /// `max_adaptive_rhs_evals`.
+    pub fn adaptive(&self) -> Limits {
+        Limits {
+            max_rhs_evals: self.max_rhs_evals.min(self.max_adaptive_rhs_evals),
+            ..*self
+        }
     }
 }
 

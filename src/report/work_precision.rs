@@ -5,7 +5,9 @@
 //! machine-dependent) and RHS evaluations (deterministic). Lower left is better.
 //!
 //! A run that failed has no error: it is marked in the "failed" band at its cost (the work
-//! done until the failure), so a chart that breaks down stays visible. A completed run with a
+//! done until the failure), so a chart that breaks down stays visible. Failed runs are not
+//! timed (the suite's timing pass skips them), so in a wall-time plot their marks sit at the
+//! left edge. A completed run with a
 //! null primary metric (no reference) is left out.
 use super::chart::{FailMark, Legend, Line, Plot};
 use super::data::{CaseView, SceneView};
@@ -103,7 +105,7 @@ pub fn plot(
     let what = match cost {
         Cost::Wall => format!(
             "against wall time (the minimum over the timing repeats; machine-dependent, never \
-             gated{})",
+             gated{}; failed runs are not timed and are marked at the left edge)",
             timing_clause(timing)
         ),
         Cost::Rhs => "against right-hand-side evaluations (deterministic)".into(),

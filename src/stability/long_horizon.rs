@@ -379,6 +379,7 @@ pub fn study(cases: &[Case], filter: &VariantFilter, opts: &StudyOptions) -> Res
             setup.limits = Limits {
                 max_steps: steps,
                 max_rhs_evals: Limits::default().max_rhs_evals.max(100 * steps),
+                ..setup.limits
             };
             let mut job = Job {
                 case: plan.case.clone(),

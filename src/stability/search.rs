@@ -297,6 +297,7 @@ pub fn probe_limits(max_steps: u64) -> crate::integrate::Limits {
     crate::integrate::Limits {
         max_steps,
         max_rhs_evals: max_steps.saturating_mul(16),
+        max_adaptive_rhs_evals: max_steps.saturating_mul(16),
     }
 }
 

@@ -14,14 +14,17 @@
 //! the stored first stage `f(t0, x)` (so the caller must pass back the state it received);
 //! any other `t0` starts afresh (new `f(t0, x)`, new initial step). Work counted: every RHS
 //! evaluation (the first-same-as-last stage of dopri5 once), accepted steps in `steps`,
-//! rejected ones in `rejected`, normalizations; `Limits::check` after every attempt. Per
+//! rejected ones in `rejected`, normalizations; `Limits::check` after every attempt, and
+//! `Limits::room` before it, so a run never passes its RHS budget. Per
 //! attempt dopri5 costs 6 evaluations and dop853 11, plus 1 per accepted dop853 step (its
 //! next first stage, taken after normalization); a fresh start costs 2 (`f(t0, x)` and the
 //! heuristic's Euler probe). With dopri5 the reused stage was evaluated before `normalize`,
 //! which moves the state by round-off only.
 //!
 //! Failures: `step_size_underflow` when the step falls to `1e-14 |t|` or below (a
-//! finite-time blow-up, or a tolerance below round-off); `work_limit`; the system's own
+//! finite-time blow-up, or a tolerance below round-off); `work_limit` (an attempt that could
+//! pass `max_rhs_evals` is not started; a diverging solution at a loose tolerance, whose step
+//! is limited by the blown-up velocities rather than by the floor, ends here); the system's own
 //! `check` after every accepted step (`non_finite`, `singular_chart`); `non_finite` for a
 //! non-finite time span or a non-finite dense-output increment (dop853's extra stages can
 //! overflow where the step's own stages did not); an error from the output callback.
@@ -134,6 +137,12 @@ impl<S: ErrorScale> AdaptiveRk<S> {
         (!self.t_last.is_nan()).then_some(self.t_last)
     }
 
+    /// The most RHS evaluations one attempt can take: its stages, the dense output's appended
+    /// stages and the next first stage (an upper bound: dopri5 takes 6, dop853 12 to 16).
+    fn attempt_cost(&self) -> u64 {
+        self.tab.dense_stages() as u64 + 1
+    }
+
     /// Forgets the step size and the stored first stage: the next call starts afresh.
     pub fn reset(&mut self) {
         self.h = 0.0;
@@ -243,6 +252,7 @@ impl<S: ErrorScale> Adaptive<S> for AdaptiveRk<S> {
         let mut t = t0;
         loop {
             self.check_step(t)?;
+            limits.room(t, stats, self.attempt_cost())?;
             let last = (t + 1.01 * dir * self.h - t1) * dir >= 0.0;
             let dh = dir * if last { (t1 - t).abs() } else { self.h };
             match self.attempt(sys, t, dh, x, stats) {
@@ -291,6 +301,7 @@ impl<S: ErrorScale> Adaptive<S> for AdaptiveRk<S> {
         let mut next = 1;
         loop {
             self.check_step(t)?;
+            limits.room(t, stats, self.attempt_cost())?;
             let last = (t + 1.01 * dir * self.h - t_end) * dir >= 0.0;
             let dh = dir * if last { (t_end - t).abs() } else { self.h };
             let x_prev = *x;

@@ -3,7 +3,6 @@
 //! the benches use them (design.md, "Case files"; the shared parts come from `crate::plan`).
 //! Fails with a `CaseError` naming the scene when the scene is not a rigid-body scene.
 use crate::case::{self, Case, Scene};
-use crate::integrate::Limits;
 use crate::plan::{ladders, select};
 use crate::run::Grid;
 use crate::suite::Ladders;
@@ -34,10 +33,7 @@ pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
             key: format!("scene[{}]", s.index),
             message: "not a rigid-body scene".into(),
         })?;
-    let limits = Limits {
-        max_steps: c.max_steps,
-        max_rhs_evals: c.max_rhs_evals.unwrap_or(Limits::default().max_rhs_evals),
-    };
+    let limits = c.limits();
     Ok(ScenePlan {
         case: c.name.clone(),
         scene: s.name.clone(),

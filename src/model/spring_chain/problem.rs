@@ -131,10 +131,7 @@ impl ChainProblem {
                     sample_every: scene.sample_every,
                     score_every: scene.score_every,
                 },
-                limits: Limits {
-                    max_steps: case.max_steps,
-                    max_rhs_evals: case.max_rhs_evals.unwrap_or(Limits::default().max_rhs_evals),
-                },
+                limits: case.limits(),
             },
             ladders: crate::plan::ladders(&scene.ladders),
             quick: crate::plan::ladders(&scene.quick),
