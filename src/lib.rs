@@ -29,6 +29,7 @@ pub mod integrate;
 pub mod math;
 pub mod metrics;
 pub mod model;
+pub mod output;
 pub mod plan;
 pub mod problem;
 pub mod quiet;

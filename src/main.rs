@@ -2,6 +2,8 @@
 use clap::Parser;
 
 fn main() {
+    // First, before any thread: SIGINT and friends remove the temporary files (`output`).
+    mbdbench::output::interrupt::install();
     let cli = match mbdbench::cli::Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {

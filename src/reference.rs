@@ -160,34 +160,49 @@ pub fn load_as<R: Stored>(
 
 /// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
 /// The temporary file is removed when writing or renaming fails (a full disk used to leave
-/// `*.tmp<pid>` behind).
+/// `*.tmp<pid>` behind) and on SIGINT (`output::interrupt`); those a killed process left
+/// beside `path` are removed by the next write of it.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)?;
     }
+    crate::output::remove_stale_tmp(path);
     let tmp = path.with_extension(format!("tmp{}", std::process::id()));
-    std::fs::write(&tmp, bytes)
+    crate::output::interrupt::register(&tmp);
+    let r = std::fs::write(&tmp, bytes)
         .and_then(|()| std::fs::rename(&tmp, path))
         .inspect_err(|_| {
             let _ = std::fs::remove_file(&tmp);
-        })
+        });
+    crate::output::interrupt::unregister(&tmp);
+    r
 }
 
-/// Checks, before any work, that `dir` can be written: a probe file is written and removed in
-/// `dir`, or, when `dir` does not exist yet, in its nearest existing ancestor (nothing is
-/// created, so bad input found later still leaves nothing behind). An unwritable `--out` used
-/// to be found only after every run was computed. The error names the folder.
+/// Checks, before any work, that the output folder `dir` can be written: it may not be a file,
+/// a file-system root, the current folder or one of its ancestors (`output::Staging`); a
+/// probe file is written and removed in `dir` when it exists, and in its parent (where the
+/// new output is built), or, when that does not exist yet, in its nearest existing ancestor
+/// (nothing is created, so bad input found later still leaves nothing behind). An unwritable
+/// `--out` used to be found only after every run was computed. The error names the folder.
 pub fn check_writable(dir: &Path) -> Result<(), String> {
     let fail =
         |e: std::io::Error| format!("{}: the output folder is not writable: {e}", dir.display());
-    let mut at = dir;
+    let full = crate::output::resolve(dir)?;
+    if full.exists() && !full.is_dir() {
+        return Err(format!(
+            "{}: the output folder is not writable: it is not a folder",
+            dir.display()
+        ));
+    }
+    let mut probes = vec![];
+    if full.is_dir() {
+        probes.push(full.clone());
+    }
+    let mut at = full.parent().expect("resolve gives a path with a parent");
     while !at.exists() {
         match at.parent() {
-            Some(p) if !p.as_os_str().is_empty() => at = p,
-            _ => {
-                at = Path::new(".");
-                break;
-            }
+            Some(p) => at = p,
+            None => break,
         }
     }
     if !at.is_dir() {
@@ -197,9 +212,13 @@ pub fn check_writable(dir: &Path) -> Result<(), String> {
             at.display()
         ));
     }
-    let probe = at.join(format!(".mbdbench-probe-{}", std::process::id()));
-    std::fs::write(&probe, b"probe").map_err(fail)?;
-    std::fs::remove_file(&probe).map_err(fail)
+    probes.push(at.to_path_buf());
+    for at in probes {
+        let probe = at.join(format!(".mbdbench-probe-{}", std::process::id()));
+        std::fs::write(&probe, b"probe").map_err(fail)?;
+        std::fs::remove_file(&probe).map_err(fail)?;
+    }
+    Ok(())
 }
 
 /// Writes any family's reference file (pretty JSON, round-trip floats) atomically.

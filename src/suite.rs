@@ -15,8 +15,8 @@ use std::time::Instant;
 use crate::case::Case;
 use crate::integrate::MethodInfo;
 use crate::metrics::order;
+use crate::output;
 use crate::problem::{self, Entry, Problem, Variant, Want};
-use crate::reference;
 use crate::summary::{self, Env, FitRecord, Record, RunKey, Status, Summary, Wall};
 
 /// Step ladders per method order class, and tolerances for adaptive methods.
@@ -319,12 +319,13 @@ pub fn run_catalogue(
         }
         timing.finish();
     }
-    let series_root = opts.out.join("series");
+    // The new output is built beside the folder and swapped in whole (`output`): a reader
+    // never sees this run's series beside another run's summary.
+    let mut staging = output::Staging::begin(&opts.out, output::Writer::Run)?;
     for d in done {
         if let Some((rel, series)) = &d.series {
             let text = serde_json::to_string(series).map_err(|e| e.to_string())?;
-            reference::write_atomic(&opts.out.join(rel), text.as_bytes())
-                .map_err(|e| format!("{}: {e}", series_root.display()))?;
+            staging.write(rel, text.as_bytes())?;
         }
         records.push(d.record);
     }
@@ -339,9 +340,8 @@ pub fn run_catalogue(
         fits,
     };
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
-    let path = opts.out.join("summary.json");
-    reference::write_atomic(&path, text.as_bytes())
-        .map_err(|e| format!("{}: {e}", path.display()))?;
+    staging.write("summary.json", text.as_bytes())?;
+    staging.commit()?;
     Ok(summary)
 }
 

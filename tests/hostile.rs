@@ -46,6 +46,12 @@ const SMALL_RUN: &[&str] = &[
     "1",
 ];
 
+/// Makes the summary in `dir` the user's: the folder's manifest goes, so readers take a
+/// hand-edited summary as it is (with the manifest they refuse it, `tests/interrupt.rs`).
+fn own_summary(dir: &Path) {
+    std::fs::remove_file(dir.join(mbdbench::output::MANIFEST)).unwrap();
+}
+
 /// A small quick run (one scene, one variant) into `dir`.
 fn small_run(dir: &Path) {
     let o = bin()
@@ -104,6 +110,7 @@ fn summary_md_escapes_names() {
     let hostile = text.replace("\"two_angles\"", "\"<img src=x onerror=alert(1)>\"");
     assert_ne!(hostile, text);
     std::fs::write(&p, hostile).unwrap();
+    own_summary(&dir);
     let o = bin()
         .args(["report", "--summary"])
         .arg(&p)
@@ -271,6 +278,7 @@ fn report_reads_series_only_inside_its_folder() {
         .into();
     }
     std::fs::write(&p, serde_json::to_string_pretty(&s).unwrap()).unwrap();
+    own_summary(&dir);
     let (code, err) = run_guarded(
         &["report".as_ref(), "--summary".as_ref(), p.as_os_str()],
         120,

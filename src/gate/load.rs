@@ -23,7 +23,8 @@ pub fn stability_beside(summary_path: &Path) -> Result<Option<Summary>, GateErro
     load_as(&p, "stability summary").map(Some)
 }
 
-/// Reads a file in the summary's schema; `what` names it in errors.
+/// Reads a file in the summary's schema, checked against its folder's manifest when it has
+/// one; `what` names it in errors.
 pub(crate) fn load_as(path: &Path, what: &'static str) -> Result<Summary, GateError> {
     let bad = |message: String| GateError::Unreadable {
         what,
@@ -31,6 +32,9 @@ pub(crate) fn load_as(path: &Path, what: &'static str) -> Result<Summary, GateEr
         message,
     };
     let bytes = std::fs::read(path).map_err(|e| bad(format!("cannot read: {e}")))?;
+    // The folder's manifest (`output`): a file changed since the suite wrote the folder may
+    // sit beside another run's files.
+    crate::output::verify(path, &bytes).map_err(bad)?;
     let s: Summary = serde_json::from_slice(&bytes).map_err(|e| {
         if e.is_eof() {
             bad(format!("truncated: {e}"))

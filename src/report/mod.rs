@@ -20,8 +20,9 @@
 //!
 //! Robustness: a missing or unreadable series file, an `n/a` record, a null metric or a case
 //! absent from `cases` never stops the report: the affected plot or cell says "no data" (or
-//! `null`, `-`) in place. Only I/O errors writing the output are errors. Every file is written
-//! atomically (`reference::write_atomic`); the page last, after its SVG files.
+//! `null`, `-`) in place. Only I/O errors writing the output are errors. The files are built
+//! in a staging folder and swapped in as a whole (`output::Staging`): a reader never sees a
+//! page without its SVG files or beside an older report's.
 pub mod axes;
 pub mod chart;
 pub mod convergence;
@@ -125,6 +126,9 @@ pub enum ReportError {
         path: PathBuf,
         source: std::io::Error,
     },
+    /// Building or committing the output folder (`output::Staging`).
+    #[error("{0}")]
+    Output(String),
 }
 
 /// The environment line of a summary.
@@ -266,13 +270,6 @@ fn safe(component: &str) -> String {
     }
 }
 
-fn write(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
-    crate::reference::write_atomic(path, bytes).map_err(|source| ReportError::Io {
-        path: path.to_path_buf(),
-        source,
-    })
-}
-
 /// Writes `out/index.html`, `out/summary.md` and `out/svg/<case>/...svg`.
 ///
 /// `series_root` is the directory of the series files (`<summary dir>/series`, holding
@@ -288,6 +285,12 @@ pub fn write_report(
     out: &Path,
 ) -> Result<ReportFiles, ReportError> {
     let page = build_page(summary, series_root, cases, gate_rows, stability);
+    let mut staging = crate::output::Staging::begin(out, crate::output::Writer::Report)
+        .map_err(ReportError::Output)?;
+    let mut write = |rel: &str, bytes: &[u8]| -> Result<PathBuf, ReportError> {
+        staging.write(rel, bytes).map_err(ReportError::Output)?;
+        Ok(out.join(rel))
+    };
     let mut svgs = vec![];
     for c in &page.cases {
         let figs = c.across.iter().chain(c.scenes.iter().flat_map(|s| {
@@ -301,19 +304,18 @@ pub fn write_report(
             let chart::Rendered::Svg(svg) = &f.body else {
                 continue;
             };
-            let mut path = out.join("svg").join(safe(&c.name));
+            let mut rel = format!("svg/{}", safe(&c.name));
             for part in f.kind.split('/') {
-                path.push(safe(part));
+                rel.push('/');
+                rel.push_str(&safe(part));
             }
-            path.set_extension("svg");
-            write(&path, svg.as_bytes())?;
-            svgs.push(path);
+            rel.push_str(".svg");
+            svgs.push(write(&rel, svg.as_bytes())?);
         }
     }
-    let summary_md = out.join("summary.md");
-    write(&summary_md, markdown::render(&page).as_bytes())?;
-    let index_html = out.join("index.html");
-    write(&index_html, html::render(&page).as_bytes())?;
+    let summary_md = write("summary.md", markdown::render(&page).as_bytes())?;
+    let index_html = write("index.html", html::render(&page).as_bytes())?;
+    staging.commit().map_err(ReportError::Output)?;
     Ok(ReportFiles {
         index_html,
         summary_md,

@@ -259,11 +259,10 @@ fn part_cases(
 fn write_study(all: Part, opts: &StudyOptions) -> Result<crate::summary::Summary, String> {
     let mut records = all.records;
     records.sort_by_key(record_order);
+    let mut staging = crate::output::Staging::begin(&opts.out, crate::output::Writer::Stability)?;
     for (rel, value) in &all.series {
         let text = serde_json::to_string(value).map_err(|e| e.to_string())?;
-        let path = opts.out.join(rel);
-        crate::reference::write_atomic(&path, text.as_bytes())
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        staging.write(rel, text.as_bytes())?;
     }
     let summary = crate::summary::Summary {
         schema: 1,
@@ -274,9 +273,8 @@ fn write_study(all: Part, opts: &StudyOptions) -> Result<crate::summary::Summary
         fits: all.fits,
     };
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
-    let path = opts.out.join("stability.json");
-    crate::reference::write_atomic(&path, text.as_bytes())
-        .map_err(|e| format!("{}: {e}", path.display()))?;
+    staging.write("stability.json", text.as_bytes())?;
+    staging.commit()?;
     Ok(summary)
 }
 
