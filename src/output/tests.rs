@@ -145,3 +145,20 @@ fn bad_places_are_refused() {
     assert_eq!(others(&base, "afile"), Vec::<String>::new());
     std::fs::remove_dir_all(&base).unwrap();
 }
+
+/// A temporary file that a killed process left beside a file (`<stem>.tmp<pid>`) is removed
+/// by the next atomic write of that file; a user's file of a similar name is not.
+#[test]
+fn stale_tmp_is_removed_by_the_next_write() {
+    let base = temp("stale-tmp");
+    let target = base.join("trajectory.json");
+    let stale = base.join("trajectory.tmp4000000000");
+    let user = base.join("trajectory.tmp-notes");
+    for p in [&stale, &user] {
+        std::fs::write(p, "x").unwrap();
+    }
+    crate::reference::write_atomic(&target, b"{}").unwrap();
+    assert!(!stale.exists() && user.exists());
+    assert_eq!(read(&target), "{}");
+    std::fs::remove_dir_all(&base).unwrap();
+}
