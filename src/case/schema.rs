@@ -1,0 +1,158 @@
+//! The raw (serde) shape of a case file: `[stability]`, the keys every case file and every
+//! scene has ([`RawShared`], [`RawGrid`]), and the `case_schema!` macro with which a family
+//! declares its own case file around them (design.md, "Case file"). Validation of the values
+//! is in `mod.rs` (`Ctx`); this file holds only what the TOML must look like, with
+//! `deny_unknown_fields` everywhere so that a misspelt key is an error naming it.
+use serde::Deserialize;
+
+use super::{RawGate, RawLadders, ReferenceKind};
+
+/// `[stability]` as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStability {
+    pub(super) periods: f64,
+    pub(super) rotation_error_max: f64,
+    #[serde(default)]
+    pub(super) quick: Vec<String>,
+}
+
+/// The keys every case file has, as written (split off a family's raw case by
+/// [`case_schema!`]).
+pub struct RawShared {
+    pub schema: i64,
+    pub case: String,
+    pub title: String,
+    pub primary_metric: String,
+    pub energy_scale: f64,
+    pub reference: ReferenceKind,
+    pub max_steps: Option<f64>,
+    pub max_rhs_evals: Option<f64>,
+    pub max_adaptive_rhs_evals: Option<f64>,
+    pub ladders: RawLadders,
+    pub gates: Vec<RawGate>,
+    pub stability: Option<RawStability>,
+}
+
+/// The keys every scene has, as written.
+pub struct RawGrid {
+    pub name: String,
+    pub t_end: f64,
+    pub sample_every: f64,
+    pub score_every: f64,
+    pub ladders: Option<RawLadders>,
+}
+
+/// Declares a family's raw (serde) case file: the struct of the whole file (the shared keys
+/// of design.md's case file plus the family's own, `deny_unknown_fields`), the struct of one
+/// `[[scene]]` likewise, plain structs of the family's own keys, and `split`, which separates
+/// the shared keys ([`RawShared`], [`RawGrid`]) from the family's.
+///
+/// ```ignore
+/// mbdbench::case_schema! {
+///     case RawCase / CaseOwn { body: RawBody, #[serde(default)] spring: Vec<RawSpring> }
+///     scene RawScene / SceneOwn { euler_xyz: [f64; 3] }
+/// }
+/// ```
+#[macro_export]
+macro_rules! case_schema {
+    (
+        case $Case:ident / $CaseOwn:ident {
+            $( $(#[$cfm:meta])* $cf:ident : $ct:ty ),* $(,)?
+        }
+        scene $Scene:ident / $SceneOwn:ident {
+            $( $(#[$sfm:meta])* $sf:ident : $st:ty ),* $(,)?
+        }
+    ) => {
+        /// The whole case file as written.
+        #[derive(serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub(crate) struct $Case {
+            schema: i64,
+            case: String,
+            title: String,
+            #[allow(dead_code)]
+            model: String,
+            primary_metric: String,
+            energy_scale: f64,
+            reference: $crate::case::ReferenceKind,
+            max_steps: Option<f64>,
+            max_rhs_evals: Option<f64>,
+            max_adaptive_rhs_evals: Option<f64>,
+            scene: Vec<$Scene>,
+            ladders: $crate::case::RawLadders,
+            #[serde(default)]
+            gates: Vec<$crate::case::RawGate>,
+            stability: Option<$crate::case::RawStability>,
+            $( $(#[$cfm])* $cf: $ct, )*
+        }
+
+        /// One `[[scene]]` as written.
+        #[derive(serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub(crate) struct $Scene {
+            name: String,
+            t_end: f64,
+            sample_every: f64,
+            score_every: f64,
+            ladders: Option<$crate::case::RawLadders>,
+            $( $(#[$sfm])* $sf: $st, )*
+        }
+
+        /// The family's own keys of the case file.
+        pub(crate) struct $CaseOwn {
+            $( pub $cf: $ct, )*
+        }
+
+        /// The family's own keys of a scene.
+        pub(crate) struct $SceneOwn {
+            $( pub $sf: $st, )*
+        }
+
+        impl $Case {
+            /// The shared keys, the family's own, and each scene split likewise.
+            fn split(
+                self,
+            ) -> (
+                $crate::case::RawShared,
+                $CaseOwn,
+                Vec<($crate::case::RawGrid, $SceneOwn)>,
+            ) {
+                let scenes = self
+                    .scene
+                    .into_iter()
+                    .map(|s| {
+                        (
+                            $crate::case::RawGrid {
+                                name: s.name,
+                                t_end: s.t_end,
+                                sample_every: s.sample_every,
+                                score_every: s.score_every,
+                                ladders: s.ladders,
+                            },
+                            $SceneOwn { $( $sf: s.$sf, )* },
+                        )
+                    })
+                    .collect();
+                (
+                    $crate::case::RawShared {
+                        schema: self.schema,
+                        case: self.case,
+                        title: self.title,
+                        primary_metric: self.primary_metric,
+                        energy_scale: self.energy_scale,
+                        reference: self.reference,
+                        max_steps: self.max_steps,
+                        max_rhs_evals: self.max_rhs_evals,
+                        max_adaptive_rhs_evals: self.max_adaptive_rhs_evals,
+                        ladders: self.ladders,
+                        gates: self.gates,
+                        stability: self.stability,
+                    },
+                    $CaseOwn { $( $cf: self.$cf, )* },
+                    scenes,
+                )
+            }
+        }
+    };
+}
