@@ -66,6 +66,9 @@ pub enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// The recommendation: per case and target error, the cheapest variant reaching it on
+    /// every non-control scene, its runner-up, and what to avoid and why.
+    Advise(AdviseArgs),
     /// Regenerate a stored reference, or (--check) recompute and compare.
     Reference {
         #[arg(long)]
@@ -147,6 +150,27 @@ pub struct GateArgs {
     /// Rewrite the baseline file (default reports/baseline/quick.json) from the summary.
     #[arg(long)]
     pub update_baseline: bool,
+}
+
+#[derive(Debug, Args, Clone)]
+pub struct AdviseArgs {
+    /// The summary to advise from.
+    #[arg(long, default_value = "reports/latest/summary.json")]
+    pub summary: PathBuf,
+    /// Only these cases (repeatable; default: every case of the summary).
+    #[arg(long)]
+    pub case: Vec<String>,
+    /// Target errors in each case's primary metric (repeatable; default: the case's
+    /// `advise_targets`, else 1e-3, 1e-6 and 1e-9).
+    #[arg(long)]
+    pub target: Vec<f64>,
+    /// Rank by deterministic work (RHS evaluations + Newton iterations) or by median wall
+    /// time.
+    #[arg(long, default_value = "work", value_parser = ["work", "time"])]
+    pub by: String,
+    /// Print the recommendation as JSON (schema: src/advise/mod.rs).
+    #[arg(long)]
+    pub json: bool,
 }
 
 #[derive(Debug, Args, Clone)]
@@ -249,6 +273,7 @@ pub fn execute(cli: Cli) -> i32 {
         Some(Command::Stability(a)) => cmd_stability(&common, &a),
         Some(Command::Trajectory(a)) => cmd_trajectory(&common, &a),
         Some(Command::Gate(a)) => cmd_gate(&common, &a),
+        Some(Command::Advise(a)) => cmd_advise(&common, &a),
         Some(Command::Report { summary, out }) => cmd_report(&common, &summary, out.as_deref()),
         Some(Command::Reference { case, scene, check }) => {
             cmd_reference(&common, &case, scene.as_deref(), check)
@@ -551,6 +576,52 @@ fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
     let mut out = crate::quiet::Stdout;
     crate::gate::print_table(&rows, &mut out).map_err(|e| e.to_string())?;
     Ok(crate::gate::exit_code(&rows))
+}
+
+fn cmd_advise(common: &Common, a: &AdviseArgs) -> Result<i32, String> {
+    let cases = load_cases(common)?;
+    for c in &a.case {
+        if !cases.iter().any(|k| &k.name == c) {
+            let known: Vec<&str> = cases.iter().map(|k| k.name.as_str()).collect();
+            return Err(format!(
+                "--case {c}: no such case; known: {}",
+                known.join(", ")
+            ));
+        }
+    }
+    for &t in &a.target {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(format!("--target {t}: must be a positive number"));
+        }
+    }
+    let summary = crate::gate::load_summary(&a.summary).map_err(|e| e.to_string())?;
+    // The references' accuracy claims decide which targets are offered.
+    let root = common.references.clone().unwrap_or_else(default_references);
+    let claim = |c: &Case, scene: &str| -> Option<f64> {
+        let s = c.scene(scene)?;
+        let mut p = (crate::problem::family_of(c).compile)(c, s).ok()?;
+        p.attach_reference(&root).ok()?;
+        p.accuracy_claim(&c.primary_metric)
+    };
+    let opts = crate::advise::Options {
+        cases: a.case.clone(),
+        targets: a.target.clone(),
+        by: if a.by == "time" {
+            crate::advise::By::Time
+        } else {
+            crate::advise::By::Work
+        },
+    };
+    let advice = crate::advise::advise(&summary, &crate::advise::specs(&cases, &claim), &opts);
+    if a.json {
+        crate::say!(
+            "{}",
+            serde_json::to_string_pretty(&advice).map_err(|e| e.to_string())?
+        );
+    } else {
+        crate::say!("{}", crate::advise::render(&advice).trim_end());
+    }
+    Ok(EXIT_OK)
 }
 
 fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {

@@ -22,6 +22,7 @@
 //! let err = out.scores.get("rotation_error_max").unwrap();
 //! assert!(err < 1e-5 && err > 1e-8, "RKMK4 at 1e-2 s: {err:e}");
 //! ```
+pub mod advise;
 pub mod case;
 pub mod cli;
 pub mod gate;

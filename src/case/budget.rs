@@ -27,6 +27,10 @@ pub const DEFAULT_MAX_RHS_EVALS: u64 = 2_000_000_000;
 /// tol 0.5 on `nine_spring/two_angles`: 7.8e8 evaluations, 413 s).
 pub const DEFAULT_MAX_ADAPTIVE_RHS_EVALS: u64 = 1_000_000;
 
+/// `advise_max_energy_drift` when a case does not set it: the relative energy drift above
+/// which the recommendation lists a variant to avoid.
+pub const DEFAULT_ADVISE_MAX_ENERGY_DRIFT: f64 = 1e-3;
+
 /// The most samples one run keeps in memory (its observations at every `sample_every`,
 /// 136 bytes each for the rigid body: 136 MB): a case or `--t-end` that would need
 /// more is refused before any run (the catalogue's largest run keeps 2,001).

@@ -47,8 +47,8 @@ pub mod ladder;
 mod schema;
 
 pub use budget::{
-    DEFAULT_MAX_ADAPTIVE_RHS_EVALS, DEFAULT_MAX_RHS_EVALS, DEFAULT_MAX_STEPS, MAX_SAMPLES,
-    over_sample_budget,
+    DEFAULT_ADVISE_MAX_ENERGY_DRIFT, DEFAULT_MAX_ADAPTIVE_RHS_EVALS, DEFAULT_MAX_RHS_EVALS,
+    DEFAULT_MAX_STEPS, MAX_SAMPLES, over_sample_budget,
 };
 pub use gate::{Bound, Gate, GateWhere, RawGate};
 pub use hash::{canonical_json, inputs_sha256, inputs_value};
@@ -185,6 +185,10 @@ pub struct Case {
     pub max_rhs_evals: u64,
     /// RHS-evaluation budget of an adaptive run (default `DEFAULT_MAX_ADAPTIVE_RHS_EVALS`).
     pub max_adaptive_rhs_evals: u64,
+    /// The recommendation's target errors in the primary metric (None: `advise`'s defaults).
+    pub advise_targets: Option<Vec<f64>>,
+    /// Above this relative energy drift a variant is listed to avoid (default 1e-3).
+    pub advise_max_energy_drift: f64,
     pub scenes: Vec<Scene>,
     pub gates: Vec<Gate>,
     /// `[stability]`: the stability study's settings (None: the case is not in the study).
@@ -224,6 +228,9 @@ pub struct Scene {
     pub ladders: Ladder,
     /// The quick tier (a class absent from every `quick` table is empty: not run quick).
     pub quick: Ladder,
+    /// A control scene: its result is known by construction (a chart exact on it); the
+    /// recommendation leaves it out of "cheapest" (outside the physics hash).
+    pub control: bool,
     /// The family's own data of the scene (a rigid body's initial state).
     pub physics: Physics,
 }
@@ -504,6 +511,30 @@ impl Ctx<'_> {
             Some(x) => self.count("max_adaptive_rhs_evals", x)?,
             None => DEFAULT_MAX_ADAPTIVE_RHS_EVALS,
         };
+        let advise_targets = match &raw.advise_targets {
+            None => None,
+            Some(t) if t.is_empty() => {
+                return self.err(
+                    "advise_targets",
+                    "empty; expected at least one target error",
+                );
+            }
+            Some(t) => {
+                let mut seen = std::collections::HashSet::new();
+                for (i, &x) in t.iter().enumerate() {
+                    let k = format!("advise_targets[{i}]");
+                    self.positive(&k, x, "an error in the primary metric's unit")?;
+                    if !seen.insert(x.to_bits()) {
+                        return self.err(k, format!("{x} is listed twice"));
+                    }
+                }
+                Some(t.clone())
+            }
+        };
+        let advise_max_energy_drift = match raw.advise_max_energy_drift {
+            Some(x) => self.positive("advise_max_energy_drift", x, "a relative drift")?,
+            None => DEFAULT_ADVISE_MAX_ENERGY_DRIFT,
+        };
         let physics = case_physics(self)?;
         self.ladders_shape("ladders", &raw.ladders, true)?;
         if scenes.is_empty() {
@@ -557,6 +588,8 @@ impl Ctx<'_> {
             max_steps,
             max_rhs_evals,
             max_adaptive_rhs_evals,
+            advise_targets,
+            advise_max_energy_drift,
             scenes: out,
             gates,
             stability,
@@ -620,9 +653,6 @@ impl Ctx<'_> {
         if let Some(why) = over_sample_budget(n_score, samples_per_score) {
             return self.err(key("sample_every"), why);
         }
-        if let Some(why) = over_sample_budget(n_score, samples_per_score) {
-            return self.err(key("sample_every"), why);
-        }
         if let Some(l) = &s.ladders {
             self.ladders_shape(&key("ladders"), l, false)?;
         }
@@ -645,6 +675,7 @@ impl Ctx<'_> {
             samples_per_score,
             ladders,
             quick,
+            control: s.control,
             physics,
         })
     }

@@ -29,6 +29,8 @@ pub struct RawShared {
     pub max_steps: Option<f64>,
     pub max_rhs_evals: Option<f64>,
     pub max_adaptive_rhs_evals: Option<f64>,
+    pub advise_targets: Option<Vec<f64>>,
+    pub advise_max_energy_drift: Option<f64>,
     pub ladders: RawLadders,
     pub gates: Vec<RawGate>,
     pub stability: Option<RawStability>,
@@ -41,6 +43,9 @@ pub struct RawGrid {
     pub sample_every: f64,
     pub score_every: f64,
     pub ladders: Option<RawLadders>,
+    /// A control scene (`control = true`): a result known by construction, such as a chart
+    /// that is exact on it; left out of the recommendation's "cheapest" (`advise`).
+    pub control: bool,
 }
 
 /// Declares a family's raw (serde) case file: the struct of the whole file (the shared keys
@@ -79,6 +84,8 @@ macro_rules! case_schema {
             max_steps: Option<f64>,
             max_rhs_evals: Option<f64>,
             max_adaptive_rhs_evals: Option<f64>,
+            advise_targets: Option<Vec<f64>>,
+            advise_max_energy_drift: Option<f64>,
             scene: Vec<$Scene>,
             ladders: $crate::case::RawLadders,
             #[serde(default)]
@@ -96,6 +103,8 @@ macro_rules! case_schema {
             sample_every: f64,
             score_every: f64,
             ladders: Option<$crate::case::RawLadders>,
+            #[serde(default)]
+            control: bool,
             $( $(#[$sfm])* $sf: $st, )*
         }
 
@@ -129,6 +138,7 @@ macro_rules! case_schema {
                                 sample_every: s.sample_every,
                                 score_every: s.score_every,
                                 ladders: s.ladders,
+                                control: s.control,
                             },
                             $SceneOwn { $( $sf: s.$sf, )* },
                         )
@@ -145,6 +155,8 @@ macro_rules! case_schema {
                         max_steps: self.max_steps,
                         max_rhs_evals: self.max_rhs_evals,
                         max_adaptive_rhs_evals: self.max_adaptive_rhs_evals,
+                        advise_targets: self.advise_targets,
+                        advise_max_energy_drift: self.advise_max_energy_drift,
                         ladders: self.ladders,
                         gates: self.gates,
                         stability: self.stability,

@@ -140,6 +140,21 @@ pub enum FailureKind {
     BoundExceeded,
 }
 
+impl FailureKind {
+    /// The kind's name as the files write it (snake_case).
+    pub fn name(self) -> &'static str {
+        match self {
+            FailureKind::SingularChart => "singular_chart",
+            FailureKind::NonFinite => "non_finite",
+            FailureKind::NewtonFailure => "newton_failure",
+            FailureKind::StepSizeUnderflow => "step_size_underflow",
+            FailureKind::WorkLimit => "work_limit",
+            FailureKind::Diverged => "diverged",
+            FailureKind::BoundExceeded => "bound_exceeded",
+        }
+    }
+}
+
 /// A typed failure: what, when, and a sentence for the report.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Failure {

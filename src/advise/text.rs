@@ -1,0 +1,103 @@
+//! The recommendation as text, for the terminal (`mbdbench advise`, the end of the main job):
+//! per case one line per target (winner, its settings and cost, the runner-up and the gap,
+//! the wall-time winner or why there is none), the skipped targets, and the avoid list
+//! grouped by reason (at most `AVOID_LINES` lines per case, with the count of the rest).
+use std::fmt::Write;
+
+use super::{Advice, Pick, Setting};
+
+/// Avoid lines shown per case (the JSON holds them all).
+pub const AVOID_LINES: usize = 8;
+
+fn settings(p: &Pick) -> String {
+    p.settings
+        .iter()
+        .map(|(scene, s)| match s {
+            Setting::Dt(dt) => format!("{scene} dt={dt:e}"),
+            Setting::Tol(tol) => format!("{scene} tol={tol:e}"),
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The recommendation as lines of text.
+pub fn render(a: &Advice) -> String {
+    let mut out = String::new();
+    let cost = if a.by == "time" {
+        "median wall time"
+    } else {
+        "RHS evaluations + Newton iterations"
+    };
+    let _ = writeln!(
+        out,
+        "Recommendation (cheapest by {cost}; every non-control scene):"
+    );
+    for c in &a.cases {
+        let _ = writeln!(
+            out,
+            "\n{} ({} in {}; scenes: {}{})",
+            c.case,
+            c.metric,
+            if c.unit.is_empty() { "-" } else { &c.unit },
+            c.scenes.join(", "),
+            if c.controls.is_empty() {
+                String::new()
+            } else {
+                format!("; controls left out: {}", c.controls.join(", "))
+            }
+        );
+        for t in &c.targets {
+            match &t.winner {
+                Some(w) => {
+                    let mut line = format!(
+                        "  <= {:e}: {} (cost {}{}; {})",
+                        t.target,
+                        w.name(),
+                        w.cost,
+                        w.wall_s.map_or(String::new(), |s| format!(", {s:.3} s")),
+                        settings(w)
+                    );
+                    if let (Some(r), Some(g)) = (&t.runner_up, t.gap) {
+                        let _ = write!(line, "; runner-up {} x{g:.2}", r.name());
+                    }
+                    if let Some(b) = &t.by_time {
+                        let _ = write!(line, "; fastest by wall time {}", b.name());
+                    }
+                    let _ = writeln!(out, "{line}");
+                    if let Some(n) = &t.note {
+                        let _ = writeln!(out, "      ({n})");
+                    }
+                }
+                None => {
+                    let _ = writeln!(
+                        out,
+                        "  <= {:e}: none ({})",
+                        t.target,
+                        t.note.as_deref().unwrap_or("-")
+                    );
+                }
+            }
+        }
+        for s in &c.skipped_targets {
+            let _ = writeln!(out, "  <= {:e}: not offered: {}", s.target, s.reason);
+        }
+        if !c.avoid.is_empty() {
+            let _ = writeln!(out, "  avoid ({}):", c.avoid.len());
+            for v in c.avoid.iter().take(AVOID_LINES) {
+                let who = match (&v.integrator, &v.formulation) {
+                    (Some(i), Some(f)) => format!("{}/{i}/{f}", v.param),
+                    _ => format!("{} (chart)", v.param),
+                };
+                let _ = writeln!(out, "    {who} on {}: {}", v.scene, v.reason);
+            }
+            if c.avoid.len() > AVOID_LINES {
+                let _ = writeln!(
+                    out,
+                    "    ... {} more (advise --json lists them all)",
+                    c.avoid.len() - AVOID_LINES
+                );
+            }
+        }
+    }
+    out
+}
