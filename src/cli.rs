@@ -266,7 +266,22 @@ pub fn execute(cli: Cli) -> i32 {
                 return Ok(code);
             }
             let summary = RunArgs::default().out.join("summary.json");
-            cmd_report(&common, &summary, None)
+            let code = cmd_report(&common, &summary, None)?;
+            if code != EXIT_OK {
+                return Ok(code);
+            }
+            // The answer last, where the terminal shows it.
+            crate::say!("");
+            cmd_advise(
+                &common,
+                &AdviseArgs {
+                    summary,
+                    case: vec![],
+                    target: vec![],
+                    by: "work".into(),
+                    json: false,
+                },
+            )
         }),
         Some(Command::List { json }) => cmd_list(&common, json),
         Some(Command::Run(a)) => cmd_run(&common, &a),
