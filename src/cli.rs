@@ -547,6 +547,12 @@ fn cmd_report(
         &cases,
         rows.as_deref(),
         source,
+        Some(advice_for(
+            common,
+            &cases,
+            &summary,
+            &crate::advise::Options::default(),
+        )),
         &out,
     )
     .map_err(|e| e.to_string())?;
@@ -593,6 +599,24 @@ fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
     Ok(crate::gate::exit_code(&rows))
 }
 
+/// The recommendation of `summary`, the references' accuracy claims deciding which targets
+/// are offered (a scene whose reference cannot be loaded offers every target).
+fn advice_for(
+    common: &Common,
+    cases: &[Case],
+    summary: &crate::summary::Summary,
+    opts: &crate::advise::Options,
+) -> crate::advise::Advice {
+    let root = common.references.clone().unwrap_or_else(default_references);
+    let claim = |c: &Case, scene: &str| -> Option<f64> {
+        let s = c.scene(scene)?;
+        let mut p = (crate::problem::family_of(c).compile)(c, s).ok()?;
+        p.attach_reference(&root).ok()?;
+        p.accuracy_claim(&c.primary_metric)
+    };
+    crate::advise::advise(summary, &crate::advise::specs(cases, &claim), opts)
+}
+
 fn cmd_advise(common: &Common, a: &AdviseArgs) -> Result<i32, String> {
     let cases = load_cases(common)?;
     for c in &a.case {
@@ -610,14 +634,6 @@ fn cmd_advise(common: &Common, a: &AdviseArgs) -> Result<i32, String> {
         }
     }
     let summary = crate::gate::load_summary(&a.summary).map_err(|e| e.to_string())?;
-    // The references' accuracy claims decide which targets are offered.
-    let root = common.references.clone().unwrap_or_else(default_references);
-    let claim = |c: &Case, scene: &str| -> Option<f64> {
-        let s = c.scene(scene)?;
-        let mut p = (crate::problem::family_of(c).compile)(c, s).ok()?;
-        p.attach_reference(&root).ok()?;
-        p.accuracy_claim(&c.primary_metric)
-    };
     let opts = crate::advise::Options {
         cases: a.case.clone(),
         targets: a.target.clone(),
@@ -627,7 +643,7 @@ fn cmd_advise(common: &Common, a: &AdviseArgs) -> Result<i32, String> {
             crate::advise::By::Work
         },
     };
-    let advice = crate::advise::advise(&summary, &crate::advise::specs(&cases, &claim), &opts);
+    let advice = advice_for(common, &cases, &summary, &opts);
     if a.json {
         crate::say!(
             "{}",

@@ -222,8 +222,9 @@ fn stability_part(st: &StabilitySection) -> String {
 
 fn case_section(c: &CaseSection, env: &str) -> String {
     let mut s = format!(
-        "<section class=\"case\" data-case=\"{}\">\n<h2>{}{}</h2>\n",
+        "<section class=\"case\" data-case=\"{}\" id=\"{}\">\n<h2>{}{}</h2>\n",
         esc(&c.name),
+        esc(&super::advice::anchor(&c.name)),
         esc(&c.name),
         if c.title.is_empty() {
             String::new()
@@ -318,6 +319,9 @@ pub fn render(page: &Page) -> String {
         names.join(", ")
     });
     s.push_str(".</p>\n</header>\n");
+    if let Some(a) = &page.advice {
+        s.push_str(&super::advice::html(a));
+    }
     for c in &page.cases {
         s.push_str(&case_section(c, &page.env_line));
     }
@@ -441,7 +445,10 @@ pub fn render_check(html: &str) -> Vec<String> {
             ));
         }
         for (n, v) in &t.attrs {
-            if REF_ATTRS.contains(&n.as_str()) || n.ends_with(":href") {
+            // A link inside the page (`href="#case-..."`, the recommendation's headings) fetches
+            // nothing.
+            let in_page = t.name == "a" && n == "href" && v.starts_with('#');
+            if !in_page && (REF_ATTRS.contains(&n.as_str()) || n.ends_with(":href")) {
                 problems.push(format!("<{}> has a {n}=\"{v}\" attribute", t.name));
             } else if n.starts_with("on") {
                 problems.push(format!("<{}> has an event handler {n}", t.name));
@@ -527,16 +534,18 @@ mod tests {
         assert_eq!(t[0].attr("data-x"), Some("1"));
     }
 
-    /// External references and scripts are reported; the SVG namespace declaration is not.
+    /// External references and scripts are reported; the SVG namespace declaration and a
+    /// link inside the page (`href="#..."`) are not.
     #[test]
     fn finds_external_refs() {
-        let bad = "<p class=\"env\">x</p><a href=\"#x\">a</a><img src=\"a.png\"><script></script>\
+        let bad = "<p class=\"env\">x</p><a href=\"#x\">a</a><a href=\"https://e.org\">b</a>\
+                   <img src=\"a.png\"><script></script>\
                    <svg xmlns=\"http://www.w3.org/2000/svg\"><image xlink:href=\"b.png\"/></svg>\
                    <div style=\"background:url(c.png)\"></div>";
         let p = render_check(bad);
         let joined = p.join("\n");
         for want in [
-            "href=\"#x\"",
+            "href=\"https://e.org\"",
             "src=\"a.png\"",
             "<script>",
             "xlink:href",
@@ -545,6 +554,7 @@ mod tests {
             assert!(joined.contains(want), "{want} not reported in {joined}");
         }
         assert!(!joined.contains("xmlns"), "{joined}");
+        assert!(!joined.contains("\"#x\""), "{joined}");
     }
 
     /// A case without its sections, and a figure without content, are reported.

@@ -11,7 +11,7 @@ use super::{CaseSection, Page};
 /// a tag, a comment, a declaration or an autolink (followed by a letter, `/`, `!` or `?`) and an
 /// `&` that would start an entity (followed by a letter or `#`) are written as entities; the
 /// rest (`<=`, `a & b`) stays as it reads.
-fn text(s: &str) -> String {
+pub(super) fn text(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     let mut it = s.chars().peekable();
     while let Some(c) = it.next() {
@@ -135,6 +135,9 @@ pub fn render(page: &Page) -> String {
     );
     if let Some((pass, fail)) = page.gate_summary {
         s.push_str(&format!("**Gates: {pass} passed, {fail} failed.**\n\n"));
+    }
+    if let Some(a) = &page.advice {
+        s.push_str(&super::advice::markdown(a));
     }
     if page.cases.is_empty() {
         s.push_str("No cases (no data).\n");

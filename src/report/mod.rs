@@ -23,6 +23,7 @@
 //! `null`, `-`) in place. Only I/O errors writing the output are errors. The files are built
 //! in a staging folder and swapped in as a whole (`output::Staging`): a reader never sees a
 //! page without its SVG files or beside an older report's.
+pub mod advice;
 pub mod axes;
 pub mod chart;
 pub mod convergence;
@@ -108,6 +109,8 @@ pub struct Page {
     pub cases: Vec<CaseSection>,
     /// (passed, failed) gate rows, when gate rows were given.
     pub gate_summary: Option<(usize, usize)>,
+    /// The recommendation, when given (`write_report`).
+    pub advice: Option<crate::advise::Advice>,
 }
 
 /// The files written.
@@ -248,6 +251,7 @@ pub fn build_page(
         key_text: key_text(&views),
         cases: sections,
         gate_summary,
+        advice: None,
     }
 }
 
@@ -275,16 +279,19 @@ fn safe(component: &str) -> String {
 /// `series_root` is the directory of the series files (`<summary dir>/series`, holding
 /// `<case>/<scene>/<id>.json`; the summary's directory also works). `gate_rows`, when given,
 /// colour the matrices and add a gate table per case. `stability`, when given, adds the
-/// stability study's part to each case it covers.
+/// stability study's part to each case it covers. `advice`, when given, is the first thing
+/// on the page and in `summary.md`: a table of the recommendation (`crate::advise`).
 pub fn write_report(
     summary: &Summary,
     series_root: &Path,
     cases: &[Case],
     gate_rows: Option<&[GateRow]>,
     stability: Option<stability::Source>,
+    advice: Option<crate::advise::Advice>,
     out: &Path,
 ) -> Result<ReportFiles, ReportError> {
-    let page = build_page(summary, series_root, cases, gate_rows, stability);
+    let mut page = build_page(summary, series_root, cases, gate_rows, stability);
+    page.advice = advice;
     let mut staging = crate::output::Staging::begin(out, crate::output::Writer::Report)
         .map_err(ReportError::Output)?;
     let mut write = |rel: &str, bytes: &[u8]| -> Result<PathBuf, ReportError> {
@@ -353,7 +360,7 @@ mod tests {
         fixture::write_series(&dir.join("series"), &s, |_| false);
         let cases = crate::case::embedded().unwrap();
         let out = dir.join("report");
-        let files = write_report(&s, &dir.join("series"), &cases, None, None, &out).unwrap();
+        let files = write_report(&s, &dir.join("series"), &cases, None, None, None, &out).unwrap();
         let html = std::fs::read_to_string(&files.index_html).unwrap();
         assert_eq!(render_check(&html), Vec::<String>::new());
         for t in html::start_tags(&html) {
@@ -422,7 +429,7 @@ mod tests {
         let dir = fixture::temp_dir("missing");
         let out = dir.join("report");
         // No series at all, and no case files.
-        let files = write_report(&s, &dir.join("nowhere"), &[], None, None, &out).unwrap();
+        let files = write_report(&s, &dir.join("nowhere"), &[], None, None, None, &out).unwrap();
         let html = std::fs::read_to_string(&files.index_html).unwrap();
         assert_eq!(render_check(&html), Vec::<String>::new());
         let sec = case_html(&html, fixture::CASE);
@@ -440,7 +447,7 @@ mod tests {
         assert!(sec.contains("written on SO(3) x R^3 (chart so3) only"));
         // Only one scene's series present: that scene's time series are drawn.
         fixture::write_series(&dir.join("series"), &s, |r| r.key.scene == "large");
-        let files = write_report(&s, &dir.join("series"), &[], None, None, &out).unwrap();
+        let files = write_report(&s, &dir.join("series"), &[], None, None, None, &out).unwrap();
         let html = std::fs::read_to_string(&files.index_html).unwrap();
         assert_eq!(
             case_html(&html, fixture::CASE)
@@ -452,7 +459,7 @@ mod tests {
         let mut empty = s.clone();
         empty.records.clear();
         empty.fits.clear();
-        let files = write_report(&empty, &dir.join("series"), &[], None, None, &out).unwrap();
+        let files = write_report(&empty, &dir.join("series"), &[], None, None, None, &out).unwrap();
         let html = std::fs::read_to_string(&files.index_html).unwrap();
         assert_eq!(render_check(&html), Vec::<String>::new());
         assert!(html.contains("none (no data)"));

@@ -180,7 +180,7 @@ fn stability_fixture_renders_tables_and_plots() {
         summary: &st,
         dir: &dir,
     };
-    let files = write_report(&s, &dir.join("series"), &[], None, Some(src), &out).unwrap();
+    let files = write_report(&s, &dir.join("series"), &[], None, Some(src), None, &out).unwrap();
     let page = std::fs::read_to_string(&files.index_html).unwrap();
     assert_eq!(render_check(&page), Vec::<String>::new());
     for t in html::start_tags(&page) {
@@ -413,6 +413,7 @@ fn corrupt_stability_json_warns_and_report_goes_on() {
             summary: s,
             dir: &dir,
         }),
+        None,
         &dir.join("report"),
     )
     .unwrap();
