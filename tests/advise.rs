@@ -12,7 +12,8 @@ use mbdbench::summary::Status;
 
 /// Every winner and runner-up reaches its target at its settings on every scene it lists,
 /// which are all the case's non-control scenes; gimbal_lock's winners are not Euler charts;
-/// the binary's JSON equals the library's advice.
+/// the binary's JSON equals the library's advice, and the report's table names the same
+/// winners.
 #[test]
 fn advice_holds_against_the_summary() {
     let dir = common::temp_dir("advise");
@@ -110,5 +111,24 @@ fn advice_holds_against_the_summary() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let cli: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(cli, serde_json::to_value(&advice).unwrap());
+    // The report opens with the same winners, and marks the control scene in its text.
+    let o = Command::new(env!("CARGO_BIN_EXE_mbdbench"))
+        .args(["report", "--summary"])
+        .arg(out.join("summary.json"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    let table = &md[md.find("## Recommendation").unwrap()..md.find("\n## gimbal_lock").unwrap()];
+    for c in &advice.cases {
+        for t in &c.targets {
+            if let Some(w) = &t.winner {
+                assert!(table.contains(&format!("**{}** cost {}", w.name(), w.cost)));
+            }
+        }
+    }
+    assert!(md.contains(
+        "left out of the recommendation: a result known by construction.) Scene spin_d0"
+    ));
     let _ = std::fs::remove_dir_all(&dir);
 }

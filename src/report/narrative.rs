@@ -3,7 +3,7 @@
 //!
 //! - per scene, the cheapest completed run whose primary error is `<= TARGET` (1e-6), by RHS
 //!   evaluations (deterministic) and by wall time (`wall_s.min`), or the smallest error reached
-//!   when none gets there;
+//!   when none gets there; a control scene (`control = true`) is marked as such;
 //! - the failures, counted by kind, with the parameterizations and integrators involved;
 //! - for the family's chart group (`problem::figures::ChartGroup`; the rigid body's Euler-angle
 //!   charts): their lowest minimum conditioning, their failure rate against the other charts',
@@ -164,6 +164,22 @@ fn join_names(mut names: Vec<String>) -> String {
 }
 
 fn scene_sentence(cv: &CaseView, sv: &SceneView) -> String {
+    let control = cv
+        .case
+        .and_then(|c| c.scene(&sv.name))
+        .is_some_and(|s| s.control);
+    let sentence = scene_facts(cv, sv);
+    if control {
+        format!(
+            "(Control scene, left out of the recommendation: a result known by construction.) \
+             {sentence}"
+        )
+    } else {
+        sentence
+    }
+}
+
+fn scene_facts(cv: &CaseView, sv: &SceneView) -> String {
     let c = cheapest(sv, &cv.primary, TARGET);
     let p = &cv.primary;
     let ties = c.by_rhs.map_or(0, |a| {
