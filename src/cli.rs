@@ -771,7 +771,12 @@ fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
     reference::write_atomic(&a.out, text.as_bytes())
         .map_err(|e| format!("{}: {e}", a.out.display()))?;
     if let Some(f) = out.failure {
-        eprintln!("run failed: {:?} at t = {}: {}", f.kind, f.t, f.message);
+        eprintln!(
+            "run failed: {} at t = {}: {}",
+            f.kind.name(),
+            f.t,
+            f.message
+        );
         return Ok(EXIT_FAILED);
     }
     Ok(EXIT_OK)

@@ -502,7 +502,7 @@ pub fn print_table(
                 .map(|o| format!("{o:6.2}"))
                 .unwrap_or_else(|| format!("{:>6}", "-"));
             let status = match (&r.failure, failures.get(&k)) {
-                (Some(f), _) => format!("failed {:?} t={:.3}", f.kind, f.t),
+                (Some(f), _) => format!("failed {} t={:.3}", f.kind.name(), f.t),
                 (None, Some(n)) => format!("ok ({n} coarser failed)"),
                 (None, None) => "ok".into(),
             };

@@ -713,4 +713,7 @@ fn diverging_adaptive_run_is_bounded() {
     let evals = r["stats"]["rhs_evals"].as_u64().unwrap();
     assert!(evals <= 1_000_000, "{evals} RHS evaluations");
     assert!(r["wall_s"].is_null(), "a failed run was timed: {r}");
+    // The terminal table names the kind as the files do (it printed `WorkLimit`).
+    let table = String::from_utf8_lossy(&o.stdout);
+    assert!(table.contains(&format!("failed {kind} t=")), "{table}");
 }

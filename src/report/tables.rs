@@ -156,10 +156,7 @@ pub fn failures(cv: &CaseView) -> Table {
 
 /// The snake_case name of a failure kind (as in summary.json).
 pub fn kind_name(k: crate::integrate::FailureKind) -> String {
-    serde_json::to_value(k)
-        .ok()
-        .and_then(|v| v.as_str().map(String::from))
-        .unwrap_or_else(|| format!("{k:?}"))
+    k.name().to_string()
 }
 
 /// The largest completed ladder step of every variant in every scene.

@@ -288,7 +288,7 @@ fn run_job(job: &Job) -> Done {
         let final_name = format!("{name}_error_final");
         let exp_name = format!("{name}_growth_exponent");
         let fit = match &out.failure {
-            Some(f) => Err(format!("run failed ({:?}) at t = {}", f.kind, f.t)),
+            Some(f) => Err(format!("run failed ({}) at t = {}", f.kind.name(), f.t)),
             None => fit_growth(&t, err, FIT_DECADES),
         };
         match (&out.failure, err.last()) {

@@ -99,7 +99,7 @@ pub fn growth(plan: &ScenePlan) -> Result<Vec<(f64, f64)>, String> {
         setup.initial = initial;
         let out = (v.run)(&setup, TOL)?;
         match &out.failure {
-            Some(f) => Err(format!("{:?} at t = {}: {}", f.kind, f.t, f.message)),
+            Some(f) => Err(format!("{} at t = {}: {}", f.kind.name(), f.t, f.message)),
             None => Ok(out),
         }
     };

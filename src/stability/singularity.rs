@@ -157,7 +157,7 @@ fn run_one(
         Ok(out) => {
             metrics.insert("conditioning_min".into(), Some(out.conditioning_min));
             if let Some(f) = &out.failure {
-                let why = format!("run failed ({:?}) at t = {}", f.kind, f.t);
+                let why = format!("run failed ({}) at t = {}", f.kind.name(), f.t);
                 metrics.insert("rotation_error_max".into(), None);
                 reasons.insert("rotation_error_max".into(), why);
             } else {
