@@ -503,7 +503,11 @@ pub fn evaluate(
         for (i, g) in gated {
             for p in expand(c, i, g, &problems, opts.quick)? {
                 let rec = index.find(&c.name, &p, &g.metric);
-                rows.push(judge(c, g, &p, rec, &mut refs, stability.is_some()));
+                let mut row = judge(c, g, &p, rec, &mut refs, stability.is_some());
+                if rec.is_none() && !summary.records.is_empty() {
+                    row.note.push_str(&tier_hint(cases, summary, opts.quick));
+                }
+                rows.push(row);
             }
         }
     }
@@ -519,6 +523,18 @@ pub fn evaluate(
         )?);
     }
     Ok(rows)
+}
+
+/// Why a gated point may be missing when the summary is of the other tier than the gates
+/// (quick gates ask for quick-ladder points, full gates for the full ladders), or "".
+fn tier_hint(cases: &[Case], summary: &Summary, quick: bool) -> String {
+    match (quick, is_quick_summary(cases, summary)) {
+        (true, false) => "; the summary is not a quick-tier run (it has points off the quick \
+                          ladders): gate it without --quick"
+            .into(),
+        (false, true) => "; the summary is a quick-tier run: gate it with --quick".into(),
+        _ => String::new(),
+    }
 }
 
 /// The row of one gated point.

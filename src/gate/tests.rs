@@ -341,3 +341,35 @@ fn stability_records_are_searched() {
         (Verdict::Pass, Some(0.95))
     );
 }
+
+/// A gated point without a record says so, and adds the reason when the summary is of the
+/// other tier than the gates (quick gates on a full run, full gates on a quick run); on the
+/// matching tier the note is plain.
+#[test]
+fn missing_point_names_the_tier() {
+    let c = nine();
+    let cases = std::slice::from_ref(&c);
+    let mut s = passing(&c);
+    // Only the quick ladders' points: a quick-tier run, missing the full gates' points.
+    s.records.retain(|r| {
+        let q = &c.scene(&r.key.scene).unwrap().quick;
+        r.dt.or(r.tol).is_some_and(|v| {
+            [&q.order1, &q.order2_4, &q.order6]
+                .iter()
+                .any(|l| l.iter().any(|f| f.dt == v))
+                || q.tol.contains(&v)
+        })
+    });
+    let quick_summary = is_quick_summary(cases, &s);
+    assert!(quick_summary);
+    let mut seen_hint = false;
+    for quick in [true, false] {
+        let rows = evaluate(cases, &s, None, &opts(quick)).unwrap();
+        for r in rows.iter().filter(|r| r.note.contains("no record")) {
+            let hinted = r.note.contains("tier run");
+            assert_eq!(hinted, quick != quick_summary, "{}", r.note);
+            seen_hint |= hinted;
+        }
+    }
+    assert!(seen_hint, "no missing point on the other tier");
+}
