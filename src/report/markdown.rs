@@ -122,7 +122,7 @@ fn case_section(c: &CaseSection, env: &str, svg_dir: &str) -> String {
             .sum::<usize>();
     s.push_str(&format!(
         "Plots ({n}): `{svg_dir}/{}/` and `index.html`.\n\n",
-        c.name.replace('`', "'")
+        super::safe(&c.name)
     ));
     s
 }

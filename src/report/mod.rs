@@ -255,8 +255,23 @@ pub fn build_page(
     }
 }
 
-/// A path component made of `[A-Za-z0-9_.-]` (anything else becomes `_`; `..` cannot occur).
-fn safe(component: &str) -> String {
+/// The longest path component `safe` writes (file systems allow 255 bytes).
+const MAX_COMPONENT: usize = 96;
+
+/// A path component made of `[A-Za-z0-9_.-]` (anything else becomes `_`; `..` cannot occur),
+/// at most `MAX_COMPONENT` bytes: a longer name (a case named by a hostile summary) keeps its
+/// first 64 characters and a hash of the whole, so distinct names stay distinct (a 300-byte
+/// case name failed the report with ENAMETOOLONG).
+pub(super) fn safe(component: &str) -> String {
+    let s = safe_chars(component);
+    if s.len() <= MAX_COMPONENT {
+        return s;
+    }
+    let hash = crate::reference::sha256_hex(component.as_bytes());
+    format!("{}-{}", &s[..64], &hash[..16])
+}
+
+fn safe_chars(component: &str) -> String {
     let s: String = component
         .chars()
         .map(|c| {
@@ -537,6 +552,27 @@ mod tests {
                 .flatten()
                 .all(|c| c.tone == tables::Tone::Plain)
         );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Path components are plain and short: a 300-byte case name becomes 64 characters and a
+    /// hash (two such names stay distinct), so the report of a summary naming it is written.
+    #[test]
+    fn long_names_are_shortened() {
+        let (a, b) = ("x".repeat(300), format!("{}y", "x".repeat(299)));
+        assert!(safe(&a).len() <= MAX_COMPONENT && safe(&a) != safe(&b));
+        assert_eq!(safe("two_angles"), "two_angles");
+        assert_eq!(safe(".."), "_");
+        let dir = std::env::temp_dir().join(format!("mbdbench-long-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let mut s = fixture::summary();
+        for r in &mut s.records {
+            r.key.case = a.clone();
+        }
+        let out = dir.join("out");
+        let files = write_report(&s, &dir.join("series"), &[], None, None, None, &out).unwrap();
+        assert!(!files.svgs.is_empty());
+        assert!(files.svgs.iter().all(|p| p.exists()));
         let _ = std::fs::remove_dir_all(&dir);
     }
 }
