@@ -1,7 +1,7 @@
 //! The mutations of the fuzz layers: TOML value literals (extremes, wrong types, junk) and
 //! text mutations of a case file (lines deleted, duplicated, swapped; keys renamed; values
 //! retyped; numbers replaced; huge and nested arrays; truncation; insertions; work-limit keys).
-//! No tests of its own: the parser, run-loop and binary layers apply them.
+//! No tests of its own: the parser, run-loop, binary and corpus layers apply them.
 use proptest::prelude::*;
 use proptest::sample::Index;
 
@@ -86,25 +86,49 @@ pub fn value() -> impl Strategy<Value = String> {
 // ---------------------------------------------------------------------------------------
 // Text mutations
 
+/// A choice of one among `n` things: proptest's `Index` in the properties, a seeded `u64`
+/// in the corpus (the same fixed-point scaling, so both cover the whole range).
+pub trait Pick {
+    /// The position chosen among `n > 0`.
+    fn pick(&self, n: usize) -> usize;
+    /// The element chosen in a non-empty slice.
+    fn pick_in<'a, T>(&self, s: &'a [T]) -> &'a T {
+        &s[self.pick(s.len())]
+    }
+}
+
+impl Pick for Index {
+    fn pick(&self, n: usize) -> usize {
+        self.index(n)
+    }
+}
+
+impl Pick for u64 {
+    fn pick(&self, n: usize) -> usize {
+        assert!(n > 0, "a choice among no things");
+        ((n as u128 * *self as u128) >> 64) as usize
+    }
+}
+
 #[derive(Debug, Clone)]
-pub enum Mutation {
-    DeleteLine(Index),
-    DuplicateLine(Index),
-    SwapLines(Index, Index),
+pub enum Mutation<I = Index> {
+    DeleteLine(I),
+    DuplicateLine(I),
+    SwapLines(I, I),
     /// Replace one numeric literal.
-    Number(Index, String),
+    Number(I, String),
     /// Replace the value of one `key = value` line.
-    Value(Index, String),
+    Value(I, String),
     /// Rename the key of one `key = value` line.
-    RenameKey(Index, String),
+    RenameKey(I, String),
     /// Cut the text at a character boundary.
-    Truncate(Index),
+    Truncate(I),
     /// Insert text at a character boundary.
-    Insert(Index, String),
+    Insert(I, String),
     /// The value of one `key = value` line becomes an array of this many numbers.
-    HugeArray(Index, usize),
+    HugeArray(I, usize),
     /// The value of one `key = value` line becomes this many nested arrays.
-    Nested(Index, usize),
+    Nested(I, usize),
     /// A top-level key (a work limit) with this value, before the first table.
     TopKey(&'static str, String),
 }
@@ -198,18 +222,19 @@ pub fn splice(text: &str, r: std::ops::Range<usize>, with: &str) -> String {
     format!("{}{with}{}", &text[..r.start], &text[r.end..])
 }
 
-pub fn apply(text: &str, m: &Mutation) -> String {
+/// `text` with the mutation `m` applied (unchanged when `m` finds nothing to change).
+pub fn apply<I: Pick>(text: &str, m: &Mutation<I>) -> String {
     let ls = lines(text);
     let asg = assignments(text);
     match m {
-        Mutation::DeleteLine(i) if !ls.is_empty() => splice(text, i.get(&ls).clone(), ""),
+        Mutation::DeleteLine(i) if !ls.is_empty() => splice(text, i.pick_in(&ls).clone(), ""),
         Mutation::DuplicateLine(i) if !ls.is_empty() => {
-            let r = i.get(&ls).clone();
+            let r = i.pick_in(&ls).clone();
             let l = text[r.clone()].to_string();
             splice(text, r.start..r.start, &l)
         }
         Mutation::SwapLines(a, b) if !ls.is_empty() => {
-            let (mut ra, mut rb) = (a.get(&ls).clone(), b.get(&ls).clone());
+            let (mut ra, mut rb) = (a.pick_in(&ls).clone(), b.pick_in(&ls).clone());
             if ra.start > rb.start {
                 std::mem::swap(&mut ra, &mut rb);
             }
@@ -230,26 +255,26 @@ pub fn apply(text: &str, m: &Mutation) -> String {
             if ns.is_empty() {
                 return text.to_string();
             }
-            splice(text, i.get(&ns).clone(), v)
+            splice(text, i.pick_in(&ns).clone(), v)
         }
         Mutation::Value(i, v) if !asg.is_empty() => {
-            splice(text, i.get(&asg).1.clone(), &format!(" {v}"))
+            splice(text, i.pick_in(&asg).1.clone(), &format!(" {v}"))
         }
         Mutation::RenameKey(i, k) if !asg.is_empty() => {
-            splice(text, i.get(&asg).0.clone(), &format!("{k} "))
+            splice(text, i.pick_in(&asg).0.clone(), &format!("{k} "))
         }
-        Mutation::Truncate(i) => text[..floor_char(text, i.index(text.len() + 1))].to_string(),
+        Mutation::Truncate(i) => text[..floor_char(text, i.pick(text.len() + 1))].to_string(),
         Mutation::Insert(i, s) => {
-            let at = floor_char(text, i.index(text.len() + 1));
+            let at = floor_char(text, i.pick(text.len() + 1));
             splice(text, at..at, s)
         }
         Mutation::HugeArray(i, n) if !asg.is_empty() => {
             let arr = format!("[{}]", vec!["1.0"; *n].join(", "));
-            splice(text, i.get(&asg).1.clone(), &format!(" {arr}"))
+            splice(text, i.pick_in(&asg).1.clone(), &format!(" {arr}"))
         }
         Mutation::Nested(i, n) if !asg.is_empty() => {
             let arr = format!("{}1.0{}", "[".repeat(*n), "]".repeat(*n));
-            splice(text, i.get(&asg).1.clone(), &format!(" {arr}"))
+            splice(text, i.pick_in(&asg).1.clone(), &format!(" {arr}"))
         }
         Mutation::TopKey(k, v) => {
             let line = format!("{k} = {v}\n");
