@@ -2,7 +2,7 @@
 //! the command line. Every input either runs or gives a typed error within its work limit;
 //! nothing panics, hangs, or leaves a half-written file that looks complete.
 //!
-//! Three layers, a file each:
+//! Four layers, a file each:
 //! - `parser.rs`: the real case files, mutated (lines deleted, duplicated, swapped; keys
 //!   renamed; values retyped; numbers replaced by extremes; huge and deeply nested arrays;
 //!   junk; truncation; the mutations themselves are `mutate.rs`), fed to `case::load_str`;
@@ -11,15 +11,24 @@
 //!   sample grids) and small work limits, planned and run with random registered variants at
 //!   their ladder steps, at steps longer than the horizon, and with horizon overrides;
 //! - `binary.rs`: bad case files and hostile arguments exit 2 naming the file and the key and
-//!   write nothing; output files are written whole or not at all.
+//!   write nothing; output files are written whole or not at all;
+//! - `corpus.rs`: a fixed, seeded corpus of about 2,000 mutated case files, summaries and
+//!   references (its seeded mutations are `corpus_mutate.rs`) through the binary under an
+//!   address-space cap of 1.5 GiB: no panic, no signal, exit 0, 1 or 2 only, nothing written on
+//!   exit 2.
 //!
 //! The number of cases per property is `MBDBENCH_FUZZ_CASES` (default 256 for the in-process
-//! parser property, a fraction of it for the slower ones; see `cases`). CI runs the defaults;
-//! a long run is `MBDBENCH_FUZZ_CASES=20000 cargo test --release --test fuzz`.
+//! parser property, a fraction of it for the slower ones; see `cases`); the corpus size is
+//! `MBDBENCH_FUZZ_CORPUS` (default 2000). CI runs the defaults; a long run is
+//! `MBDBENCH_FUZZ_CASES=20000 MBDBENCH_FUZZ_CORPUS=20000 cargo test --release --test fuzz`.
 #[path = "../common/mod.rs"]
 mod common;
 
 mod binary;
+#[cfg(unix)]
+mod corpus;
+#[cfg(unix)]
+mod corpus_mutate;
 mod mutate;
 mod parser;
 mod run_loop;
