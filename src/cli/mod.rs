@@ -1,9 +1,15 @@
-//! The command line (design.md, "Command line", contract): `list`, `run`, `trajectory`,
-//! `reference`; no subcommand runs the whole catalogue (the main job). Exit status: 0
+//! The command line (design.md, "Command line", contract): `list` (`list.rs`), `run`,
+//! `stability`, `trajectory` (`trajectory.rs`), `gate`, `report`, `advise`, `reference`; no
+//! subcommand runs the whole catalogue, its report and the recommendation (the main job). Exit status: 0
 //! success, 1 a run or check failed, 2 bad input or usage. Every command takes `--cases DIR`
 //! (default: the embedded copy of the source tree's `cases/`) and `--references DIR`.
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
+
+mod list;
+mod trajectory;
+use list::cmd_list;
+use trajectory::cmd_trajectory;
 
 /// mbdbench: rotation parameterizations x time integrators on canonical multibody problems.
 #[derive(Debug, Parser)]
@@ -303,99 +309,6 @@ pub fn execute(cli: Cli) -> i32 {
     }
 }
 
-fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
-    let cases = load_cases(common)?;
-    let problems = plan::problems(&cases, &[], &[])?;
-    // The families the cases use, in family-table order.
-    let families: Vec<&'static Family> = problem::FAMILIES
-        .iter()
-        .copied()
-        .filter(|f| problems.iter().any(|p| std::ptr::eq(p.family(), *f)))
-        .collect();
-    let registered: usize = families.iter().map(|f| (f.variants)().len()).sum();
-    let mut scenes = vec![];
-    for p in &problems {
-        let variants: Vec<_> = problem::matrix(p.family())
-            .map(|cell| {
-                let (status, reason) = match cell.entry {
-                    Entry::NotApplicable(why) => ("n/a", Some(why)),
-                    Entry::Registered(v) => match p.na_reason(v) {
-                        Some(r) => ("n/a", Some(r)),
-                        None => ("run", None),
-                    },
-                };
-                serde_json::json!({
-                    "param": cell.param, "integrator": cell.integrator,
-                    "formulation": cell.formulation, "status": status, "reason": reason,
-                })
-            })
-            .collect();
-        scenes.push(serde_json::json!({
-            "case": p.case(), "scene": p.scene(), "t_end": p.t_end(),
-            "variants": variants,
-        }));
-    }
-    if json {
-        let v = serde_json::json!({ "scenes": scenes, "registered": registered });
-        crate::say!(
-            "{}",
-            serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?
-        );
-        return Ok(EXIT_OK);
-    }
-    for c in &cases {
-        crate::say!("{} — {}", c.name, c.title);
-        for s in &c.scenes {
-            crate::say!("  scene {} (t_end {} s)", s.name, s.t_end);
-        }
-    }
-    crate::say!("\nregistered variants: {registered}");
-    for v in families.iter().flat_map(|f| (f.variants)()) {
-        crate::say!(
-            "  {:<12} {:<18} {:<8} order {} {}{}{}",
-            v.param,
-            v.integrator,
-            v.formulation,
-            v.info.order,
-            if v.info.adaptive { "adaptive " } else { "" },
-            if v.info.implicit {
-                "implicit "
-            } else {
-                "explicit "
-            },
-            if v.info.lie_group { "lie-group" } else { "" }
-        );
-    }
-    crate::say!("\nnot applicable:");
-    let mut seen = BTreeMap::new();
-    for cell in families.iter().flat_map(|f| problem::matrix(f)) {
-        if let Entry::NotApplicable(why) = cell.entry {
-            seen.entry(why).or_insert_with(Vec::new).push(format!(
-                "{}/{}/{}",
-                cell.param, cell.integrator, cell.formulation
-            ));
-        }
-    }
-    for (reason, list) in seen {
-        crate::say!("  {} combinations: {reason}", list.len());
-    }
-    for p in &problems {
-        for v in (p.family().variants)() {
-            if let Some(r) = p.na_reason(v) {
-                crate::say!(
-                    "  {}/{}: {}/{}/{}: {r}",
-                    p.case(),
-                    p.scene(),
-                    v.param,
-                    v.integrator,
-                    v.formulation
-                );
-            }
-        }
-    }
-    Ok(EXIT_OK)
-}
-
 fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
     let cases = load_cases(common)?;
     if let Some(t) = a.t_end
@@ -651,133 +564,6 @@ fn cmd_advise(common: &Common, a: &AdviseArgs) -> Result<i32, String> {
         );
     } else {
         crate::say!("{}", crate::advise::render(&advice).trim_end());
-    }
-    Ok(EXIT_OK)
-}
-
-fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
-    let cases = load_cases(common)?;
-    let mut p = plan::problems(
-        &cases,
-        std::slice::from_ref(&a.case),
-        std::slice::from_ref(&a.scene),
-    )?
-    .into_iter()
-    .find(|p| p.case() == a.case && p.scene() == a.scene)
-    .ok_or_else(|| format!("--scene {}: not in case {}", a.scene, a.case))?;
-    let family = p.family();
-    let param = match (&a.param, family.axes.params) {
-        (Some(x), _) => x.clone(),
-        (None, ["none"]) => "none".into(),
-        (None, _) => {
-            return Err(format!(
-                "give --param: the {} family has {}",
-                family.model,
-                family.axes.params.join(", ")
-            ));
-        }
-    };
-    let formulation = a
-        .formulation
-        .clone()
-        .unwrap_or_else(|| family.axes.formulations[0].to_string());
-    let v = family
-        .find(&param, &a.integrator, &formulation)
-        .ok_or_else(|| {
-            format!(
-                "{param}/{}/{formulation}: not a registered variant ({})",
-                a.integrator,
-                (family.static_na_reason)(&param, &a.integrator, &formulation)
-            )
-        })?;
-    if let Some(r) = p.na_reason(v) {
-        return Err(format!(
-            "{param}/{}/{formulation} is n/a here: {r}",
-            a.integrator
-        ));
-    }
-    let stepping = match (a.dt, a.tol, v.info.adaptive) {
-        (Some(h), None, false) => Stepping::Dt(h),
-        (None, Some(t), true) => Stepping::Tol(t),
-        (Some(_), _, true) => {
-            return Err(format!(
-                "{} is adaptive: give --tol, not --dt",
-                a.integrator
-            ));
-        }
-        (_, Some(_), false) => {
-            return Err(format!(
-                "{} is a fixed-step method: give --dt, not --tol",
-                a.integrator
-            ));
-        }
-        _ => return Err("give --dt or --tol".into()),
-    };
-    let value = match stepping {
-        Stepping::Dt(x) | Stepping::Tol(x) => x,
-    };
-    if !(value.is_finite() && value > 0.0) {
-        return Err(format!("--dt/--tol {value}: must be a positive number"));
-    }
-    if let Some(t) = a.t_end {
-        if !(t.is_finite() && t > 0.0) {
-            return Err(format!("--t-end {t}: must be a positive number"));
-        }
-        check_t_end(t, &*p)?;
-        p.set_t_end(t);
-    }
-    if !v.info.adaptive && crate::run::divides(p.score_every(), value).is_none() {
-        return Err(format!(
-            "--dt {value}: does not divide score_every = {} (spec/cases.md rule)",
-            p.score_every()
-        ));
-    }
-    let out = p.run(v, stepping, Want::Trajectory)?;
-    let mut doc = serde_json::Map::new();
-    for (k, x) in [
-        ("case", &a.case),
-        ("scene", &a.scene),
-        ("param", &param),
-        ("integrator", &a.integrator),
-        ("formulation", &formulation),
-    ] {
-        doc.insert(k.into(), x.as_str().into());
-    }
-    let status = if out.failure.is_some() {
-        "failed"
-    } else {
-        "ok"
-    };
-    doc.insert("status".into(), status.into());
-    doc.insert(
-        "failure".into(),
-        serde_json::to_value(&out.failure).map_err(|e| e.to_string())?,
-    );
-    if let Some(cols) = &out.columns {
-        doc.insert(
-            "t".into(),
-            serde_json::to_value(&cols.t).map_err(|e| e.to_string())?,
-        );
-        for (name, width, values) in &cols.columns {
-            let v = if *width == 1 {
-                serde_json::to_value(values)
-            } else {
-                serde_json::to_value(values.chunks(*width).collect::<Vec<_>>())
-            };
-            doc.insert((*name).into(), v.map_err(|e| e.to_string())?);
-        }
-    }
-    let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
-    reference::write_atomic(&a.out, text.as_bytes())
-        .map_err(|e| format!("{}: {e}", a.out.display()))?;
-    if let Some(f) = out.failure {
-        eprintln!(
-            "run failed: {} at t = {}: {}",
-            f.kind.name(),
-            f.t,
-            f.message
-        );
-        return Ok(EXIT_FAILED);
     }
     Ok(EXIT_OK)
 }

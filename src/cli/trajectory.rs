@@ -1,0 +1,131 @@
+//! `mbdbench trajectory`: one run of one variant at one step or tolerance, its samples
+//! written as named columns to one JSON file (design.md, "Files"); a typed failure keeps the
+//! samples up to it and exits 1, bad input exits 2 and writes nothing.
+use super::*;
+
+pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
+    let cases = load_cases(common)?;
+    let mut p = plan::problems(
+        &cases,
+        std::slice::from_ref(&a.case),
+        std::slice::from_ref(&a.scene),
+    )?
+    .into_iter()
+    .find(|p| p.case() == a.case && p.scene() == a.scene)
+    .ok_or_else(|| format!("--scene {}: not in case {}", a.scene, a.case))?;
+    let family = p.family();
+    let param = match (&a.param, family.axes.params) {
+        (Some(x), _) => x.clone(),
+        (None, ["none"]) => "none".into(),
+        (None, _) => {
+            return Err(format!(
+                "give --param: the {} family has {}",
+                family.model,
+                family.axes.params.join(", ")
+            ));
+        }
+    };
+    let formulation = a
+        .formulation
+        .clone()
+        .unwrap_or_else(|| family.axes.formulations[0].to_string());
+    let v = family
+        .find(&param, &a.integrator, &formulation)
+        .ok_or_else(|| {
+            format!(
+                "{param}/{}/{formulation}: not a registered variant ({})",
+                a.integrator,
+                (family.static_na_reason)(&param, &a.integrator, &formulation)
+            )
+        })?;
+    if let Some(r) = p.na_reason(v) {
+        return Err(format!(
+            "{param}/{}/{formulation} is n/a here: {r}",
+            a.integrator
+        ));
+    }
+    let stepping = match (a.dt, a.tol, v.info.adaptive) {
+        (Some(h), None, false) => Stepping::Dt(h),
+        (None, Some(t), true) => Stepping::Tol(t),
+        (Some(_), _, true) => {
+            return Err(format!(
+                "{} is adaptive: give --tol, not --dt",
+                a.integrator
+            ));
+        }
+        (_, Some(_), false) => {
+            return Err(format!(
+                "{} is a fixed-step method: give --dt, not --tol",
+                a.integrator
+            ));
+        }
+        _ => return Err("give --dt or --tol".into()),
+    };
+    let value = match stepping {
+        Stepping::Dt(x) | Stepping::Tol(x) => x,
+    };
+    if !(value.is_finite() && value > 0.0) {
+        return Err(format!("--dt/--tol {value}: must be a positive number"));
+    }
+    if let Some(t) = a.t_end {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(format!("--t-end {t}: must be a positive number"));
+        }
+        check_t_end(t, &*p)?;
+        p.set_t_end(t);
+    }
+    if !v.info.adaptive && crate::run::divides(p.score_every(), value).is_none() {
+        return Err(format!(
+            "--dt {value}: does not divide score_every = {} (spec/cases.md rule)",
+            p.score_every()
+        ));
+    }
+    let out = p.run(v, stepping, Want::Trajectory)?;
+    let mut doc = serde_json::Map::new();
+    for (k, x) in [
+        ("case", &a.case),
+        ("scene", &a.scene),
+        ("param", &param),
+        ("integrator", &a.integrator),
+        ("formulation", &formulation),
+    ] {
+        doc.insert(k.into(), x.as_str().into());
+    }
+    let status = if out.failure.is_some() {
+        "failed"
+    } else {
+        "ok"
+    };
+    doc.insert("status".into(), status.into());
+    doc.insert(
+        "failure".into(),
+        serde_json::to_value(&out.failure).map_err(|e| e.to_string())?,
+    );
+    if let Some(cols) = &out.columns {
+        doc.insert(
+            "t".into(),
+            serde_json::to_value(&cols.t).map_err(|e| e.to_string())?,
+        );
+        for (name, width, values) in &cols.columns {
+            let v = if *width == 1 {
+                serde_json::to_value(values)
+            } else {
+                serde_json::to_value(values.chunks(*width).collect::<Vec<_>>())
+            };
+            doc.insert((*name).into(), v.map_err(|e| e.to_string())?);
+        }
+    }
+    let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
+    reference::write_atomic(&a.out, text.as_bytes())
+        .map_err(|e| format!("{}: {e}", a.out.display()))?;
+    if let Some(f) = out.failure {
+        eprintln!(
+            "run failed: {} at t = {}: {}",
+            f.kind.name(),
+            f.t,
+            f.message
+        );
+        return Ok(EXIT_FAILED);
+    }
+    Ok(EXIT_OK)
+}
