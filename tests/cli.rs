@@ -341,3 +341,15 @@ fn report_with_corrupt_stability_json_warns_and_goes_on() {
     assert!(!page.contains("data-section=\"stability"));
     assert!(out.join("summary.md").is_file());
 }
+
+/// `mbdbench --help` says what running without a command does (the main job).
+#[test]
+fn help_names_the_main_job() {
+    let o = run(&["--help"]);
+    assert_eq!(o.status.code(), Some(0));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("Without a command, mbdbench runs the main job"),
+        "{text}"
+    );
+}

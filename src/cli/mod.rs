@@ -13,7 +13,15 @@ use trajectory::cmd_trajectory;
 
 /// mbdbench: rotation parameterizations x time integrators on canonical multibody problems.
 #[derive(Debug, Parser)]
-#[command(name = "mbdbench", version, about, long_about = None)]
+#[command(
+    name = "mbdbench",
+    version,
+    about,
+    long_about = None,
+    after_help = "Without a command, mbdbench runs the main job: the whole catalogue (full \
+                  ladders) into reports/latest, its report, then the recommendation \
+                  (`cargo run --release` does this)."
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
