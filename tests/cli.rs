@@ -23,23 +23,7 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// A cases folder holding one case file, `nine_spring.toml` edited by `edit`.
-fn cases_with(tag: &str, file: &str, edit: impl Fn(&str) -> String) -> PathBuf {
-    let d = common::temp_dir(tag);
-    let text = std::fs::read_to_string(repo().join("cases").join(file)).unwrap();
-    std::fs::write(d.join(file), edit(&text)).unwrap();
-    d
-}
-
-/// `text` with `old` replaced by `new`; `old` must occur (a fixture that silently stops
-/// matching the case file would test nothing).
-fn replace_once(text: &str, old: &str, new: &str) -> String {
-    assert!(
-        text.contains(old),
-        "the case file no longer contains `{old}`"
-    );
-    text.replacen(old, new, 1)
-}
+use common::{cases_with, replace_once};
 
 fn expect_bad_input(dir: &Path, key: &str, what: &str) {
     let out = dir.join("out");

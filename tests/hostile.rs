@@ -199,12 +199,7 @@ fn impossible_summaries_exit_2() {
 /// (`list` exits 0) within the test's time, and a repeat in it is still found and named.
 #[test]
 fn huge_ladder_loads() {
-    let text = std::fs::read_to_string(
-        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/nine_spring.toml"),
-    )
-    .unwrap();
     let old = "tol = [1.0e-4, 1.0e-6, 1.0e-8, 1.0e-10, 1.0e-12]";
-    assert!(text.contains(old), "the case file changed");
     let n = 1_000_000;
     let list: Vec<String> = (0..n)
         .map(|k| format!("{:e}", 1e-3 * (1.0 - k as f64 / (2.0 * n as f64))))
@@ -213,12 +208,9 @@ fn huge_ladder_loads() {
         ("ladder-1e6", list.join(", "), 0),
         ("ladder-1e6-repeat", format!("{}, 1e-3", list.join(", ")), 2),
     ] {
-        let dir = common::temp_dir(tag);
-        std::fs::write(
-            dir.join("nine_spring.toml"),
-            text.replace(old, &format!("tol = [{values}]")),
-        )
-        .unwrap();
+        let dir = common::cases_with(tag, "nine_spring.toml", |t| {
+            common::replace_once(t, old, &format!("tol = [{values}]"))
+        });
         let o = bin().args(["list", "--cases"]).arg(&dir).output().unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(code), "{tag}: {err}");
@@ -445,16 +437,8 @@ fn hostile_references_are_refused() {
 /// truncated silently).
 #[test]
 fn fixed_arrays_have_their_length() {
-    let text = std::fs::read_to_string(
-        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/nine_spring.toml"),
-    )
-    .unwrap();
     let euler = "euler_xyz = [0.0, 0.5, 1.0]";
     let inertia = "inertia = [[800.0, -60.0, 40.0], [-60.0, 1000.0, -80.0], [40.0, -80.0, 1200.0]]";
-    assert!(
-        text.contains(euler) && text.contains(inertia),
-        "the case file changed"
-    );
     for (tag, old, new, says) in [
         (
             "arr-long",
@@ -481,8 +465,9 @@ fn fixed_arrays_have_their_length() {
             "invalid length 2",
         ),
     ] {
-        let dir = common::temp_dir(tag);
-        std::fs::write(dir.join("nine_spring.toml"), text.replacen(old, new, 1)).unwrap();
+        let dir = common::cases_with(tag, "nine_spring.toml", |t| {
+            common::replace_once(t, old, new)
+        });
         let o = bin().args(["list", "--cases"]).arg(&dir).output().unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{tag}: {err}");
@@ -597,18 +582,9 @@ fn sample_budget_is_enforced_up_front() {
         );
         assert!(!out.exists(), "{}: output left behind", cmd[0]);
     }
-    let text = std::fs::read_to_string(
-        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/nine_spring.toml"),
-    )
-    .unwrap();
-    let old = "sample_every = 0.01";
-    assert!(text.contains(old), "the case file changed");
-    let cases = common::temp_dir("budget-case");
-    std::fs::write(
-        cases.join("nine_spring.toml"),
-        text.replacen(old, "sample_every = 1e-7", 1),
-    )
-    .unwrap();
+    let cases = common::cases_with("budget-case", "nine_spring.toml", |t| {
+        common::replace_once(t, "sample_every = 0.01", "sample_every = 1e-7")
+    });
     let o = bin()
         .args(["list", "--cases"])
         .arg(&cases)
@@ -664,18 +640,9 @@ fn reference_check_compares_energy() {
 /// timing pass does not run it again (`wall_s` is null).
 #[test]
 fn diverging_adaptive_run_is_bounded() {
-    let text = std::fs::read_to_string(
-        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/nine_spring.toml"),
-    )
-    .unwrap();
-    let old = "tol = [1.0e-6] }";
-    assert!(text.contains(old), "the case file changed");
-    let cases = common::temp_dir("diverging-case");
-    std::fs::write(
-        cases.join("nine_spring.toml"),
-        text.replacen(old, "tol = [0.5] }", 1),
-    )
-    .unwrap();
+    let cases = common::cases_with("diverging-case", "nine_spring.toml", |t| {
+        common::replace_once(t, "tol = [1.0e-6] }", "tol = [0.5] }")
+    });
     let out = common::temp_dir("diverging-out");
     let o = bin()
         .args([

@@ -56,6 +56,12 @@ fn ok(o: &Output) {
     );
 }
 
+/// The old run of every test: `so3` alone into `out`, plus a file of the user's beside it.
+fn old_run(out: &Path) {
+    ok(&run(out, &["so3"], None));
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+}
+
 /// The charts of the runs in `out/summary.json`.
 fn charts(out: &Path) -> BTreeSet<String> {
     let s: serde_json::Value =
@@ -152,8 +158,7 @@ fn sigkill_at_every_point_leaves_old_or_new() {
         ("swapped", &new),
     ] {
         let _ = std::fs::remove_dir_all(&out);
-        ok(&run(&out, &["so3"], None));
-        std::fs::write(out.join("notes.txt"), "mine").unwrap();
+        old_run(&out);
         assert_eq!(complete(&out), old);
         let o = run(&out, &["so3", "quat"], Some(point));
         assert_eq!(o.status.signal(), Some(9), "{point}: not killed");
@@ -205,8 +210,7 @@ fn sigkill_at_timed_points() {
     let mut seen = BTreeSet::new();
     for ms in [200u64, 500, 700, 800, 850, 900, 1000] {
         let _ = std::fs::remove_dir_all(&out);
-        ok(&run(&out, &["so3"], None));
-        std::fs::write(out.join("notes.txt"), "mine").unwrap();
+        old_run(&out);
         let mut child = whole(&out).spawn().unwrap();
         std::thread::sleep(std::time::Duration::from_millis(ms));
         let _ = child.kill();
@@ -226,8 +230,7 @@ fn sigkill_at_timed_points() {
 fn sigint_removes_the_staging_folder() {
     let base = common::temp_dir("sigint");
     let out = base.join("latest");
-    ok(&run(&out, &["so3"], None));
-    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    old_run(&out);
     for point in ["file:1:sigint", "staged:sigint", "carried:sigint"] {
         let o = run(&out, &["so3", "quat"], Some(point));
         assert_eq!(o.status.signal(), Some(2), "{point}: {o:?}");

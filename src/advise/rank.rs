@@ -56,13 +56,14 @@ pub(super) fn targets(
     (offered, skipped)
 }
 
-/// A variant's cheapest settings reaching `target` on every scene, or None.
+/// A variant's cheapest settings reaching `target` on every scene, with the shortest median
+/// wall time among the chosen runs (None: one was not timed), or None.
 fn pick(
     target: f64,
     metric: &str,
     scenes: &[&SceneSpec],
     runs: &BTreeMap<&str, Vec<&Record>>,
-) -> Option<Pick> {
+) -> Option<(Pick, Option<f64>)> {
     let mut chosen: Vec<&Record> = vec![];
     for s in scenes {
         let best = runs
@@ -94,7 +95,11 @@ fn pick(
             _ => None,
         };
     }
-    Some(Pick {
+    let shortest = chosen
+        .iter()
+        .map(|r| r.wall_s.map(|w| w.median))
+        .try_fold(f64::INFINITY, |m, w| w.map(|w| m.min(w)));
+    let p = Pick {
         param: first.key.param.clone(),
         integrator: first.key.integrator.clone(),
         formulation: first.key.formulation.clone(),
@@ -103,7 +108,8 @@ fn pick(
         rhs_evals: chosen.iter().map(|r| r.stats.rhs_evals).sum(),
         newton_iters: chosen.iter().map(|r| r.stats.newton_iters).sum(),
         wall_s: wall,
-    })
+    };
+    Some((p, shortest))
 }
 
 /// Winner, runner-up and wall-time winner at one target.
@@ -115,7 +121,7 @@ fn rank(
     by: By,
 ) -> TargetAdvice {
     // In variant order, so that a stable sort keeps ties in the family's order.
-    let mut picks: Vec<Pick> = groups
+    let mut picks: Vec<(Pick, Option<f64>)> = groups
         .values()
         .filter_map(|runs| pick(target, metric, scenes, runs))
         .collect();
@@ -125,10 +131,11 @@ fn rank(
         By::Work => &by_work,
         By::Time => &by_wall,
     };
-    picks.sort_by(|a, b| primary(a).total_cmp(&primary(b)));
+    picks.sort_by(|a, b| primary(&a.0).total_cmp(&primary(&b.0)));
     let mut it = picks.iter();
-    let winner = it.next().cloned();
-    let runner_up = it.next().cloned();
+    let first = it.next();
+    let winner = first.map(|p| p.0.clone());
+    let runner_up = it.next().map(|p| p.0.clone());
     let gap = match (&winner, &runner_up) {
         (Some(w), Some(r)) if primary(w) > 0.0 => Some(primary(r) / primary(w)),
         _ => None,
@@ -150,11 +157,13 @@ fn rank(
     }
     // The second ranking, by wall time, only where the work winner's runs are long enough
     // for the timer (and each of them was timed).
-    let timed = winner.as_ref().is_some_and(|w| {
-        chosen_walls(w, groups).is_some_and(|walls| walls.iter().all(|&t| t > MIN_TIMED_S))
-    });
+    let timed = first.is_some_and(|p| p.1.is_some_and(|t| t > MIN_TIMED_S));
     let by_time = if by == By::Work && timed {
-        let mut t: Vec<&Pick> = picks.iter().filter(|p| p.wall_s.is_some()).collect();
+        let mut t: Vec<&Pick> = picks
+            .iter()
+            .map(|p| &p.0)
+            .filter(|p| p.wall_s.is_some())
+            .collect();
         t.sort_by(|a, b| by_wall(a).total_cmp(&by_wall(b)));
         t.first().map(|p| (*p).clone())
     } else {
@@ -175,25 +184,4 @@ fn rank(
         by_time,
         note,
     }
-}
-
-/// The median wall times of a pick's chosen runs (None: one was not timed).
-fn chosen_walls(p: &Pick, groups: &ByVariant) -> Option<Vec<f64>> {
-    let runs = groups.values().find(|runs| {
-        runs.values().flatten().next().is_some_and(|r| {
-            r.key.param == p.param
-                && r.key.integrator == p.integrator
-                && r.key.formulation == p.formulation
-        })
-    })?;
-    p.settings
-        .iter()
-        .map(|(scene, s)| {
-            let r = runs.get(scene.as_str())?.iter().find(|r| match s {
-                Setting::Dt(dt) => r.dt == Some(*dt),
-                Setting::Tol(tol) => r.tol == Some(*tol),
-            })?;
-            r.wall_s.map(|w| w.median)
-        })
-        .collect()
 }

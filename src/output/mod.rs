@@ -122,7 +122,9 @@ impl Staging {
         }
         std::fs::write(&to, bytes).map_err(shown)?;
         self.manifest.add(rel, self.writer, bytes);
-        fault(&format!("file:{}", self.manifest.files.len()));
+        if fault_point().is_some() {
+            fault(&format!("file:{}", self.manifest.files.len()));
+        }
         Ok(())
     }
 
@@ -324,13 +326,20 @@ fn alive(pid: u32) -> bool {
     }
 }
 
+/// `MBDBENCH_FAULT`, read once.
+fn fault_point() -> Option<&'static str> {
+    static POINT: std::sync::OnceLock<Option<String>> = std::sync::OnceLock::new();
+    POINT
+        .get_or_init(|| std::env::var("MBDBENCH_FAULT").ok())
+        .as_deref()
+}
+
 /// Fault injection for the interruption tests: `MBDBENCH_FAULT=<point>` kills the process
 /// with SIGKILL at that point, `<point>:sigint` interrupts it with SIGINT.
 fn fault(point: &str) {
-    let Some(want) = std::env::var_os("MBDBENCH_FAULT") else {
+    let Some(want) = fault_point() else {
         return;
     };
-    let want = want.to_string_lossy();
     #[cfg(unix)]
     {
         let sig = if want == point {

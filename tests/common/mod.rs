@@ -19,6 +19,25 @@ pub fn temp_dir(tag: &str) -> PathBuf {
     d
 }
 
+/// A cases folder holding one catalogue case file, `file`, edited by `edit`.
+pub fn cases_with(tag: &str, file: &str, edit: impl Fn(&str) -> String) -> PathBuf {
+    let d = temp_dir(tag);
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("cases").join(file)).unwrap();
+    std::fs::write(d.join(file), edit(&text)).unwrap();
+    d
+}
+
+/// `text` with `old` replaced by `new`; `old` must occur (a fixture that silently stops
+/// matching the case file would test nothing).
+pub fn replace_once(text: &str, old: &str, new: &str) -> String {
+    assert!(
+        text.contains(old),
+        "the case file no longer contains `{old}`"
+    );
+    text.replacen(old, new, 1)
+}
+
 /// The plans of one case (all its scenes, or the named ones).
 pub fn plans(case_name: &str, scenes: &[&str]) -> Vec<ScenePlan> {
     let cases = case::embedded().unwrap();
