@@ -38,6 +38,7 @@ pub mod reference;
 pub mod report;
 pub mod rotation;
 pub mod run;
+pub mod selection;
 pub mod stability;
 pub mod suite;
 pub mod summary;

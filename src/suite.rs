@@ -106,9 +106,30 @@ pub struct RunOptions {
     /// Time on one thread, one run after another (`--serial-timing`); otherwise the timing
     /// pass runs one job per worker at a time, longest first.
     pub serial_timing: bool,
+    /// The `--case` and `--scene` filters that chose the problems (empty: all), recorded in
+    /// the summary's `selection`.
+    pub cases: Vec<String>,
+    pub scenes: Vec<String>,
+    /// A broader summary already in `out` (same commit and tier, its selection covering this
+    /// run's) that this run merges into: its records outside this run's selection, their
+    /// fits and series files are kept, the rest replaced (`mbdbench run` decides, `cli`).
+    pub base: Option<Summary>,
 }
 
 impl RunOptions {
+    /// The summary's `selection` of a run with these options and variant filter.
+    pub fn selection(&self, filter: &VariantFilter) -> crate::selection::Selection {
+        crate::selection::Selection {
+            tier: crate::selection::Tier::of(self.quick),
+            cases: self.cases.clone(),
+            scenes: self.scenes.clone(),
+            params: filter.param.clone(),
+            integrators: filter.integrator.clone(),
+            formulations: filter.formulation.clone(),
+            t_end: self.t_end,
+        }
+    }
+
     /// How the timing pass runs, as recorded in the summary's `env.timing`.
     pub fn timing_mode(&self) -> String {
         if self.repeats == 0 {
@@ -299,7 +320,7 @@ pub fn run_catalogue(
         // A failed run is not timed: its wall time says nothing about the method, and a run
         // that ends at its work budget would cost that budget again per repeat.
         let time_one = |job: &Job, d: &mut Done| {
-            if d.series.is_some() && d.record.status == Status::Ok {
+            if d.record.status == Status::Ok {
                 let p = &*problems[job.problem];
                 d.record.wall_s = time_run(p, job.variant, job.value, opts.repeats);
             }
@@ -319,18 +340,47 @@ pub fn run_catalogue(
         }
         timing.finish();
     }
+    keep_drawn_series(&problems, &jobs, &mut done);
     // The new output is built beside the folder and swapped in whole (`output`): a reader
     // never sees this run's series beside another run's summary.
     let mut staging = output::Staging::begin(&opts.out, output::Writer::Run)?;
     for d in done {
         if let Some((rel, series)) = &d.series {
-            let text = serde_json::to_string(series).map_err(|e| e.to_string())?;
+            let text =
+                serde_json::to_string(&series.rounded(SERIES_DIGITS)).map_err(|e| e.to_string())?;
             staging.write(rel, text.as_bytes())?;
         }
         records.push(d.record);
     }
+    let mut fits = fit_orders(&problems, &records);
+    let mut selection = opts.selection(filter);
+    if let Some(base) = &opts.base {
+        let kept = |k: &RunKey| !selection.admits(k);
+        for r in base.records.iter().filter(|r| kept(&r.key)) {
+            if let Some(rel) = &r.series {
+                let bytes = std::fs::read(opts.out.join(rel)).map_err(|e| {
+                    format!("{}: cannot keep it: {e}", opts.out.join(rel).display())
+                })?;
+                staging.write(rel, &bytes)?;
+            }
+            records.push(r.clone());
+        }
+        fits.extend(base.fits.iter().filter(|f| kept(&f.key)).cloned());
+        fits.sort_by_key(|f| {
+            let k = &f.key;
+            (
+                k.case.clone(),
+                k.scene.clone(),
+                k.variant_order(),
+                f.metric.clone(),
+            )
+        });
+        selection = base
+            .selection
+            .clone()
+            .unwrap_or_else(|| crate::selection::Selection::everything(selection.tier));
+    }
     records.sort_by_key(Record::report_order);
-    let fits = fit_orders(&problems, &records);
     let summary = Summary {
         schema: 1,
         git_commit: summary::git_commit().into(),
@@ -338,11 +388,67 @@ pub fn run_catalogue(
         env: Env::current(opts.jobs, Some(opts.timing_mode())),
         records,
         fits,
+        selection: Some(selection),
     };
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     staging.write("summary.json", text.as_bytes())?;
     staging.commit()?;
     Ok(summary)
+}
+
+/// Significant digits of the numbers in a series file: plot data (a figure resolves a few
+/// parts in 1e3), and 6 digits keep a full run's output within its 30 MB budget.
+pub const SERIES_DIGITS: usize = 6;
+
+/// Keeps the series only of the runs a figure draws: per scene and variant that one of the
+/// family's time-series selections admits, its coarsest completed ladder point (largest
+/// `dt`, loosest `tol`: `report::timeseries`); every other record gets `series: null` and
+/// the reason. A full run wrote 6,895 series files (129 MB) before; about 700 remain.
+fn keep_drawn_series(problems: &[Box<dyn Problem>], jobs: &[Job], done: &mut [Done]) {
+    let mut coarsest: BTreeMap<(usize, [usize; 3]), (usize, f64)> = BTreeMap::new();
+    for (k, (job, d)) in jobs.iter().zip(done.iter()).enumerate() {
+        if d.record.status != Status::Ok || d.series.is_none() {
+            continue;
+        }
+        let e = coarsest
+            .entry((job.problem, d.record.variant_order()))
+            .or_insert((k, job.value));
+        if job.value > e.1 {
+            *e = (k, job.value);
+        }
+    }
+    for (k, (job, d)) in jobs.iter().zip(done.iter_mut()).enumerate() {
+        let v = job.variant;
+        let p = &*problems[job.problem];
+        let drawn = p
+            .family()
+            .figures
+            .timeseries
+            .iter()
+            .any(|(_, sel)| sel.admit.admits(v.param, v.integrator, v.info.adaptive));
+        let why = match coarsest.get(&(job.problem, d.record.variant_order())) {
+            _ if d.record.status != Status::Ok => {
+                Some("not written: a failed run (no figure draws it)".to_string())
+            }
+            _ if !drawn => Some(
+                "not written: no time-series figure draws this variant (`mbdbench trajectory` \
+                 gives its samples)"
+                    .to_string(),
+            ),
+            Some(&(best, value)) if best != k => Some(format!(
+                "not written: the time-series figures draw this variant's coarsest completed \
+                 ladder point ({} = {value:e})",
+                if v.info.adaptive { "tol" } else { "dt" }
+            )),
+            None if d.series.is_none() => Some("not written: the run made none".to_string()),
+            _ => None,
+        };
+        if let Some(why) = why {
+            d.series = None;
+            d.record.series = None;
+            d.record.series_reason = Some(why);
+        }
+    }
 }
 
 fn run_job(p: &dyn Problem, job: &Job) -> Done {
@@ -422,6 +528,51 @@ fn num(v: Option<f64>) -> String {
         Some(x) => format!("{x:9.2e}"),
         None => format!("{:>9}", "-"),
     }
+}
+
+/// One line per case (scenes, variants, runs, typed failures by kind): `run`'s account
+/// without `--verbose` (the full table is in `index.html` and behind `run --verbose`).
+pub fn print_brief(s: &Summary, out: &mut impl std::io::Write) -> std::io::Result<()> {
+    #[derive(Default)]
+    struct Count<'a> {
+        scenes: std::collections::BTreeSet<&'a str>,
+        variants: std::collections::BTreeSet<[usize; 3]>,
+        runs: usize,
+        na: usize,
+        failed: BTreeMap<&'static str, usize>,
+    }
+    let mut by_case: BTreeMap<&str, Count> = BTreeMap::new();
+    for r in &s.records {
+        let c = by_case.entry(r.key.case.as_str()).or_default();
+        c.scenes.insert(&r.key.scene);
+        if r.status == Status::NotApplicable {
+            c.na += 1;
+            continue;
+        }
+        c.variants.insert(r.variant_order());
+        c.runs += 1;
+        if let Some(f) = &r.failure {
+            *c.failed.entry(f.kind.name()).or_default() += 1;
+        }
+    }
+    for (case, c) in by_case {
+        let failed: usize = c.failed.values().sum();
+        let kinds: Vec<String> = c.failed.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        writeln!(
+            out,
+            "{case}: {}, {} variants, {} runs, {failed} with a typed failure{}, {} n/a",
+            crate::summary::count(c.scenes.len(), "scene"),
+            c.variants.len(),
+            c.runs,
+            if kinds.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", kinds.join(", "))
+            },
+            c.na
+        )?;
+    }
+    Ok(())
 }
 
 /// A readable table: per scene, one row per variant (finest ladder point).

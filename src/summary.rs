@@ -86,7 +86,14 @@ pub struct Record {
     pub wall_s: Option<Wall>,
     pub inputs_sha256: String,
     pub reference_sha256: Option<String>,
+    /// The series file (relative to the summary's folder); null when none was written, with
+    /// the reason in `series_reason`.
     pub series: Option<String>,
+    /// Why `series` is null: only the runs a figure draws keep their series (each variant's
+    /// coarsest completed ladder point, for the variants the time-series plots draw), so the
+    /// output stays small; `mbdbench trajectory` gives any run's samples.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub series_reason: Option<String>,
 }
 
 impl Record {
@@ -106,6 +113,7 @@ impl Record {
             inputs_sha256: inputs_sha256.into(),
             reference_sha256: None,
             series: None,
+            series_reason: None,
         }
     }
 
@@ -193,6 +201,10 @@ pub struct Summary {
     pub env: Env,
     pub records: Vec<Record>,
     pub fits: Vec<FitRecord>,
+    /// What the run was asked to compute (`crate::selection`); absent in summaries written
+    /// before it (readers then take every case of the tier the ladder points show).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub selection: Option<crate::selection::Selection>,
 }
 
 impl Summary {
@@ -350,6 +362,45 @@ pub struct Series {
     )]
     pub primary_error: Option<Vec<f64>>,
     pub primary_metric: String,
+}
+
+/// `n` and a noun, plural past one: `1 scene`, `7 scenes`.
+pub fn count(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
+/// `x` rounded to `digits` significant digits (non-finite values unchanged).
+pub fn round_sig(x: f64, digits: usize) -> f64 {
+    if !x.is_finite() || x == 0.0 {
+        return x;
+    }
+    format!("{x:.*e}", digits.saturating_sub(1))
+        .parse()
+        .unwrap_or(x)
+}
+
+impl Series {
+    /// The series with every number rounded to `digits` significant digits (`round_sig`):
+    /// what series files hold (plot data; the summary's metrics keep full precision).
+    pub fn rounded(&self, digits: usize) -> Series {
+        let r = |v: &[f64]| v.iter().map(|&x| round_sig(x, digits)).collect::<Vec<_>>();
+        Series {
+            t: r(&self.t),
+            energy: r(&self.energy),
+            constraint: self
+                .constraint
+                .iter()
+                .map(|c| c.map(|x| round_sig(x, digits)))
+                .collect(),
+            conditioning: r(&self.conditioning),
+            primary_error: self.primary_error.as_deref().map(r),
+            primary_metric: self.primary_metric.clone(),
+        }
+    }
 }
 
 /// A list of numbers in which `null` stands for a non-finite value, read as NaN.

@@ -306,6 +306,7 @@ fn report_with_corrupt_stability_json_warns_and_goes_on() {
         env: mbdbench::summary::Env::current(1, None),
         records: vec![],
         fits: vec![],
+        selection: None,
     };
     let path = d.join("summary.json");
     std::fs::write(&path, serde_json::to_string(&summary).unwrap()).unwrap();

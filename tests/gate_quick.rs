@@ -22,6 +22,9 @@ fn real_quick_tier_passes_gates_and_baseline() {
         progress: false,
         repeats: 0,
         serial_timing: false,
+        cases: vec![],
+        scenes: vec![],
+        base: None,
     };
     let problems = mbdbench::plan::problems(&cases, &[], &[]).unwrap();
     let summary =
@@ -34,6 +37,9 @@ fn real_quick_tier_passes_gates_and_baseline() {
         baseline: Some(baseline),
         factor: gate::DEFAULT_FACTOR,
         references: mbdbench::cli::default_references(),
+        cases: vec![],
+        scenes: vec![],
+        require_stability: true,
     };
     let sopts = mbdbench::stability::StudyOptions {
         quick: true,

@@ -661,7 +661,7 @@ fn diverging_adaptive_run_is_bounded() {
             "--formulation",
             "body",
         ])
-        .args(["--jobs", "1", "--cases"])
+        .args(["--jobs", "1", "--verbose", "--cases"])
         .arg(&cases)
         .arg("--out")
         .arg(&out)
@@ -683,4 +683,6 @@ fn diverging_adaptive_run_is_bounded() {
     // The terminal table names the kind as the files do (it printed `WorkLimit`).
     let table = String::from_utf8_lossy(&o.stdout);
     assert!(table.contains(&format!("failed {kind} t=")), "{table}");
+    // So does the one line per case.
+    assert!(table.contains(&format!("(1 {kind})")), "{table}");
 }

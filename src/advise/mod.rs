@@ -27,15 +27,21 @@
 //!
 //! The JSON (`--json`, schema 1): `{schema, summary, cases: [{case, metric, unit, scenes,
 //! controls, targets: [{target, winner, runner_up, gap, by_time, note}], skipped_targets:
-//! [{target, reason}], avoid: [{param, integrator, formulation, scene, reason}]}]}` where a
+//! [{target, reason}], avoid: [{param, integrator, formulation, scene, reason}],
+//! robustness: [{scene, param, integrator, formulation, stable, accurate, limited_by}]}]}`
+//! (`stable`, `accurate`: `{dt}` or `{tol}` or null) where a
 //! pick is `{param, integrator, formulation, settings: {scene: {dt} | {tol}}, cost,
 //! rhs_evals, newton_iters, wall_s}` (`wall_s`: the sum of the chosen runs' median wall
 //! times, null when a run was not timed). Absent winners are null.
 //!
 //! Where it fails: a summary of a filtered run advises on the scenes it holds (the advice
 //! lists them); a case whose scenes have different primary metrics is not yet split per
-//! metric (every catalogue case has one); static scenes and the stability study's robustness
-//! ranking are not yet used.
+//! metric (every catalogue case has one); static scenes (a load step that does not change
+//! the elastic result) do not exist yet in the catalogue and get no rule of their own.
+//!
+//! With `stability.json` beside the summary (`Options::stability`), each case also gets the
+//! robustness ranking (`robust.rs`): per scene, the largest stable and accurate step of each
+//! variant the study searched.
 //!
 //! # Example
 //!
@@ -52,6 +58,7 @@
 //!     env: Env::current(1, None),
 //!     records: vec![],
 //!     fits: vec![],
+//!     selection: None,
 //! };
 //! let a = advise::advise(&summary, &advise::specs(&cases, &|_, _| None), &Options::default());
 //! assert!(a.cases.is_empty()); // nothing was run
@@ -59,6 +66,7 @@
 //! ```
 mod avoid;
 mod rank;
+pub mod robust;
 #[cfg(test)]
 mod tests;
 mod text;
@@ -102,6 +110,8 @@ pub struct Options {
     /// Target errors replacing each case's (empty: the case's or `DEFAULT_TARGETS`).
     pub targets: Vec<f64>,
     pub by: By,
+    /// The stability study beside the summary, when there is one: the robustness ranking.
+    pub stability: Option<Summary>,
 }
 
 /// What the recommendation needs to know of a case besides the summary.
@@ -180,6 +190,9 @@ pub struct CaseAdvice {
     pub targets: Vec<TargetAdvice>,
     pub skipped_targets: Vec<Skipped>,
     pub avoid: Vec<Avoid>,
+    /// At what step: the stability study's largest stable and accurate steps per variant
+    /// (`robust.rs`; empty without `stability.json`).
+    pub robustness: Vec<robust::Robust>,
 }
 
 /// The cheapest variants at one target.
@@ -286,6 +299,11 @@ pub fn advise(summary: &Summary, specs: &[CaseSpec], opts: &Options) -> Advice {
                 targets,
                 skipped_targets,
                 avoid: avoid::avoid(spec, &scenes, &records),
+                robustness: opts
+                    .stability
+                    .as_ref()
+                    .map(|st| robust::robustness(&spec.case, st))
+                    .unwrap_or_default(),
             })
         })
         .collect();

@@ -56,6 +56,7 @@ fn summary(records: Vec<Record>) -> Summary {
         env: Env::current(1, None),
         records,
         fits: vec![],
+        selection: None,
     }
 }
 

@@ -1,6 +1,7 @@
 //! The recommendation as text, for the terminal (`mbdbench advise`, the end of the main job):
 //! per case one line per target (winner, its settings and cost, the runner-up and the gap,
-//! the wall-time winner or why there is none), the skipped targets, and the avoid list
+//! the wall-time winner or why there is none), the skipped targets, the robustness ranking
+//! (at most `ROBUST_LINES` lines), and the avoid list
 //! grouped by reason (at most `AVOID_LINES` lines per case, with the count of the rest).
 use std::fmt::Write;
 
@@ -8,6 +9,9 @@ use super::{Advice, Pick, Setting};
 
 /// Avoid lines shown per case (the JSON holds them all).
 pub const AVOID_LINES: usize = 8;
+
+/// Robustness lines shown per case (the JSON holds them all).
+pub const ROBUST_LINES: usize = 6;
 
 fn settings(p: &Pick) -> String {
     p.settings
@@ -80,6 +84,39 @@ pub fn render(a: &Advice) -> String {
         }
         for s in &c.skipped_targets {
             let _ = writeln!(out, "  <= {:e}: not offered: {}", s.target, s.reason);
+        }
+        if !c.robustness.is_empty() {
+            let _ = writeln!(
+                out,
+                "  at what step (stability study; largest accurate, then stable):"
+            );
+            let step = |s: &Option<Setting>| match s {
+                Some(Setting::Dt(x)) => format!("dt {x:.3e}"),
+                Some(Setting::Tol(x)) => format!("tol {x:.3e}"),
+                None => "none".into(),
+            };
+            for r in c.robustness.iter().take(ROBUST_LINES) {
+                let _ = writeln!(
+                    out,
+                    "    {}/{}/{} on {}: accurate {}, stable {}{}",
+                    r.param,
+                    r.integrator,
+                    r.formulation,
+                    r.scene,
+                    step(&r.accurate),
+                    step(&r.stable),
+                    r.limited_by
+                        .as_ref()
+                        .map_or(String::new(), |l| format!(" (limited by {l})"))
+                );
+            }
+            if c.robustness.len() > ROBUST_LINES {
+                let _ = writeln!(
+                    out,
+                    "    ... {} more (advise --json lists them all)",
+                    c.robustness.len() - ROBUST_LINES
+                );
+            }
         }
         if !c.avoid.is_empty() {
             let _ = writeln!(out, "  avoid ({}):", c.avoid.len());

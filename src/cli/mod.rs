@@ -7,8 +7,12 @@ use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
 mod list;
+mod main_job;
+pub mod names;
+mod run;
 mod trajectory;
 use list::cmd_list;
+use run::cmd_run;
 use trajectory::cmd_trajectory;
 
 /// mbdbench: rotation parameterizations x time integrators on canonical multibody problems.
@@ -27,6 +31,10 @@ pub struct Cli {
     pub command: Option<Command>,
     #[command(flatten)]
     pub common: Common,
+    /// The main job (no command) runs the full stability study instead of its quick tier
+    /// (about 10 minutes more on 2 cores).
+    #[arg(long)]
+    pub full_stability: bool,
 }
 
 /// Options every command accepts.
@@ -43,15 +51,15 @@ pub struct Common {
 /// Filters selecting cases, scenes and variants (repeatable; empty = all).
 #[derive(Debug, Args, Clone, Default)]
 pub struct Filters {
-    #[arg(long = "case")]
+    #[arg(long = "case", help = names::case_help())]
     pub case: Vec<String>,
-    #[arg(long = "scene")]
+    #[arg(long = "scene", help = names::scene_help())]
     pub scene: Vec<String>,
-    #[arg(long = "param")]
+    #[arg(long = "param", help = names::param_help())]
     pub param: Vec<String>,
-    #[arg(long = "integrator")]
+    #[arg(long = "integrator", help = names::integrator_help())]
     pub integrator: Vec<String>,
-    #[arg(long = "formulation")]
+    #[arg(long = "formulation", help = names::formulation_help())]
     pub formulation: Vec<String>,
 }
 
@@ -59,6 +67,7 @@ pub struct Filters {
 pub enum Command {
     /// Cases, scenes, and the variant matrix with n/a reasons.
     List {
+        /// Print the cases, scenes and variant matrices as JSON (schema: docs/schemas.md).
         #[arg(long)]
         json: bool,
     },
@@ -85,10 +94,13 @@ pub enum Command {
     Advise(AdviseArgs),
     /// Regenerate a stored reference, or (--check) recompute and compare.
     Reference {
+        /// The case whose references to make or check.
         #[arg(long)]
         case: String,
+        /// Only this scene (default: every scene of the case).
         #[arg(long)]
         scene: Option<String>,
+        /// Recompute each reference and compare it with the stored one (writes nothing).
         #[arg(long)]
         check: bool,
     },
@@ -115,6 +127,10 @@ pub struct RunArgs {
     /// publication numbers); by default the timing pass runs one job per `--jobs` worker.
     #[arg(long = "serial-timing")]
     pub serial_timing: bool,
+    /// Print the full table (one row per scene and variant); by default one line per case
+    /// (the table is also in index.html).
+    #[arg(long)]
+    pub verbose: bool,
 }
 
 /// The main job's run: everything, full ladders, into `reports/latest`.
@@ -127,6 +143,7 @@ impl Default for RunArgs {
             out: PathBuf::from("reports/latest"),
             t_end: None,
             serial_timing: false,
+            verbose: false,
         }
     }
 }
@@ -145,6 +162,9 @@ pub struct StabilityArgs {
     /// Output folder.
     #[arg(long, default_value = "reports/latest")]
     pub out: PathBuf,
+    /// Print the study's full table; by default its closing line only.
+    #[arg(long)]
+    pub verbose: bool,
 }
 
 #[derive(Debug, Args, Clone)]
@@ -164,6 +184,19 @@ pub struct GateArgs {
     /// Rewrite the baseline file (default reports/baseline/quick.json) from the summary.
     #[arg(long)]
     pub update_baseline: bool,
+    /// Only the gates of these cases (repeatable; default: every case).
+    #[arg(long)]
+    pub case: Vec<String>,
+    /// Only the gated points on these scenes (repeatable; default: every scene).
+    #[arg(long)]
+    pub scene: Vec<String>,
+    /// Gates that need stability.json fail when it is absent beside the summary (CI);
+    /// without this flag they are skipped and counted as such.
+    #[arg(long)]
+    pub require_stability: bool,
+    /// Print only the failing rows, the skipped ones by reason and the verdict line.
+    #[arg(long)]
+    pub verdict_only: bool,
 }
 
 #[derive(Debug, Args, Clone)]
@@ -189,24 +222,30 @@ pub struct AdviseArgs {
 
 #[derive(Debug, Args, Clone)]
 pub struct TrajectoryArgs {
+    /// The case (`mbdbench list` names them).
     #[arg(long)]
     pub case: String,
+    /// The scene of the case.
     #[arg(long)]
     pub scene: String,
-    /// The parameterization (may be omitted when the case's family has only `none`).
-    #[arg(long)]
+    #[arg(long, help = format!("The parameterization (may be omitted when the case's family \
+        has only `none`). Per model family: {}", names::params()))]
     pub param: Option<String>,
-    #[arg(long)]
+    #[arg(long, help = format!("The integrator. Per model family: {}", names::integrators()))]
     pub integrator: String,
-    /// The formulation (default: the family's first, `body` for rigid bodies).
-    #[arg(long)]
+    #[arg(long, help = format!("The formulation (default: the family's first, `body` for rigid \
+        bodies). Per model family: {}", names::formulations()))]
     pub formulation: Option<String>,
+    /// The fixed step (s) of a fixed-step integrator.
     #[arg(long, conflicts_with = "tol", required_unless_present = "tol")]
     pub dt: Option<f64>,
+    /// The tolerance of an adaptive integrator.
     #[arg(long)]
     pub tol: Option<f64>,
+    /// Override the scene's horizon (s); errors against the reference are then absent.
     #[arg(long = "t-end")]
     pub t_end: Option<f64>,
+    /// The JSON file to write (atomically).
     #[arg(long)]
     pub out: PathBuf,
 }
@@ -275,28 +314,7 @@ fn jobs_or_default(j: Option<usize>) -> usize {
 pub fn execute(cli: Cli) -> i32 {
     let common = cli.common.clone();
     let result = match cli.command {
-        None => cmd_run(&common, &RunArgs::default()).and_then(|code| {
-            if code != EXIT_OK {
-                return Ok(code);
-            }
-            let summary = RunArgs::default().out.join("summary.json");
-            let code = cmd_report(&common, &summary, None)?;
-            if code != EXIT_OK {
-                return Ok(code);
-            }
-            // The answer last, where the terminal shows it.
-            crate::say!("");
-            cmd_advise(
-                &common,
-                &AdviseArgs {
-                    summary,
-                    case: vec![],
-                    target: vec![],
-                    by: "work".into(),
-                    json: false,
-                },
-            )
-        }),
+        None => main_job::run(&common, cli.full_stability),
         Some(Command::List { json }) => cmd_list(&common, json),
         Some(Command::Run(a)) => cmd_run(&common, &a),
         Some(Command::Stability(a)) => cmd_stability(&common, &a),
@@ -317,68 +335,6 @@ pub fn execute(cli: Cli) -> i32 {
     }
 }
 
-fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
-    let cases = load_cases(common)?;
-    if let Some(t) = a.t_end
-        && !(t.is_finite() && t > 0.0)
-    {
-        return Err(format!("--t-end {t}: must be a positive number"));
-    }
-    let problems = plan::problems(&cases, &a.filters.case, &a.filters.scene)?;
-    let filter = VariantFilter {
-        param: a.filters.param.clone(),
-        integrator: a.filters.integrator.clone(),
-        formulation: a.filters.formulation.clone(),
-    };
-    let bad = filter.unknown_names();
-    if !bad.is_empty() {
-        return Err(format!("unknown variant name(s): {}", bad.join(", ")));
-    }
-    if let Some(t) = a.t_end {
-        for p in &problems {
-            check_t_end(t, p.as_ref())?;
-        }
-    }
-    crate::reference::check_writable(&a.out)?;
-    let opts = RunOptions {
-        quick: a.quick,
-        jobs: jobs_or_default(a.jobs),
-        out: a.out.clone(),
-        t_end: a.t_end,
-        references: common.references.clone().unwrap_or_else(default_references),
-        progress: true,
-        repeats: 3,
-        serial_timing: a.serial_timing,
-    };
-    let t0 = std::time::Instant::now();
-    eprintln!(
-        "mbdbench run: {} scenes, {} jobs{}",
-        problems.len(),
-        opts.jobs,
-        if a.quick { ", quick tier" } else { "" }
-    );
-    let summary = suite::run_catalogue(problems, &filter, &opts)?;
-    let mut stdout = crate::quiet::Stdout;
-    suite::print_table(&summary, &cases, &mut stdout).map_err(|e| e.to_string())?;
-    let runs = summary
-        .records
-        .iter()
-        .filter(|r| r.status != crate::summary::Status::NotApplicable)
-        .count();
-    let failed = summary
-        .records
-        .iter()
-        .filter(|r| r.status == crate::summary::Status::Failed)
-        .count();
-    crate::say!(
-        "\n{runs} runs ({failed} ended with a typed failure), {} n/a; {:.1} s; summary: {}",
-        summary.records.len() - runs,
-        t0.elapsed().as_secs_f64(),
-        opts.out.join("summary.json").display()
-    );
-    Ok(EXIT_OK)
-}
-
 fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
     let cases = load_cases(common)?;
     let filter = VariantFilter {
@@ -386,10 +342,7 @@ fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
         integrator: a.filters.integrator.clone(),
         formulation: a.filters.formulation.clone(),
     };
-    let bad = filter.unknown_names();
-    if !bad.is_empty() {
-        return Err(format!("unknown variant name(s): {}", bad.join(", ")));
-    }
+    names::check_variant_names(&filter)?;
     // Validates the case and scene names (an unknown one is bad input).
     plan::select(&cases, &a.filters.case, &a.filters.scene)?;
     crate::reference::check_writable(&a.out)?;
@@ -408,10 +361,14 @@ fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
     );
     let summary =
         crate::stability::run_study(&cases, &a.filters.case, &a.filters.scene, &filter, &opts)?;
-    let mut stdout = crate::quiet::Stdout;
-    crate::stability::print_table(&summary, &mut stdout).map_err(|e| e.to_string())?;
+    if a.verbose {
+        let mut stdout = crate::quiet::Stdout;
+        crate::stability::print_table(&summary, &mut stdout).map_err(|e| e.to_string())?;
+        crate::say!("");
+    }
     crate::say!(
-        "\n{} records, {} fits; {:.1} s; {}",
+        "stability{}: {} records, {} fits; {:.1} s; {}",
+        if a.quick { " (quick tier)" } else { "" },
         summary.records.len(),
         summary.fits.len(),
         t0.elapsed().as_secs_f64(),
@@ -437,19 +394,16 @@ fn cmd_report(
     let out = out.map(|p| p.to_path_buf()).unwrap_or_else(|| dir.clone());
     let mut opts =
         crate::gate::GateOptions::new(common.references.clone().unwrap_or_else(default_references));
-    // A quick summary is judged by the quick gates (the full ones name points it lacks).
-    opts.quick = crate::gate::is_quick_summary(&cases, &summary);
+    // The gates of the summary's tier: the page's verdict is `mbdbench gate`'s (with
+    // `--quick` for a quick summary) on the same files.
+    opts.quick = crate::gate::summary_tier(&cases, &summary) == crate::selection::Tier::Quick;
     // stability.json beside the summary: its part of the report; unusable = a warning.
     let (stability, warning) = crate::report::stability::load_beside(summary_path);
     if let Some(w) = warning {
         eprintln!("{w}");
     }
     let rows = match crate::gate::evaluate(&cases, &summary, stability.as_ref(), &opts) {
-        Ok(rows) => Some(
-            rows.into_iter()
-                .filter(|r| r.value.is_some() || !r.note.contains("no record"))
-                .collect::<Vec<_>>(),
-        ),
+        Ok(rows) => Some(rows),
         Err(e) => {
             eprintln!("warning: gates not evaluated for the report: {e}");
             None
@@ -472,7 +426,10 @@ fn cmd_report(
             common,
             &cases,
             &summary,
-            &crate::advise::Options::default(),
+            &crate::advise::Options {
+                stability: stability.clone(),
+                ..Default::default()
+            },
         )),
         &out,
     )
@@ -505,18 +462,37 @@ fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
         return Err(format!("--factor {}: must be a number >= 1", a.factor));
     }
     let cases = load_cases(common)?;
+    // Unknown case or scene names are bad input, with the known ones listed.
+    plan::select(&cases, &a.case, &a.scene)?;
+    for s in &a.scene {
+        if !cases
+            .iter()
+            .filter(|c| a.case.is_empty() || a.case.contains(&c.name))
+            .any(|c| c.scene(s).is_some())
+        {
+            return Err(format!("--scene {s}: no such scene in the selected cases"));
+        }
+    }
     let summary = crate::gate::load_summary(&a.summary).map_err(|e| e.to_string())?;
+    crate::gate::check_tier(&summary, &a.summary, a.quick).map_err(|e| e.to_string())?;
     let stability = crate::gate::stability_beside(&a.summary).map_err(|e| e.to_string())?;
     let opts = crate::gate::GateOptions {
         quick: a.quick,
         baseline: a.baseline.clone(),
         factor: a.factor,
         references: common.references.clone().unwrap_or_else(default_references),
+        cases: a.case.clone(),
+        scenes: a.scene.clone(),
+        require_stability: a.require_stability,
     };
     let rows = crate::gate::evaluate(&cases, &summary, stability.as_ref(), &opts)
         .map_err(|e| e.to_string())?;
     let mut out = crate::quiet::Stdout;
-    crate::gate::print_table(&rows, &mut out).map_err(|e| e.to_string())?;
+    if a.verdict_only {
+        crate::gate::print_verdict(&rows, &mut out).map_err(|e| e.to_string())?;
+    } else {
+        crate::gate::print_table(&rows, &mut out).map_err(|e| e.to_string())?;
+    }
     Ok(crate::gate::exit_code(&rows))
 }
 
@@ -555,7 +531,9 @@ fn cmd_advise(common: &Common, a: &AdviseArgs) -> Result<i32, String> {
         }
     }
     let summary = crate::gate::load_summary(&a.summary).map_err(|e| e.to_string())?;
+    let stability = crate::gate::stability_beside(&a.summary).map_err(|e| e.to_string())?;
     let opts = crate::advise::Options {
+        stability,
         cases: a.case.clone(),
         targets: a.target.clone(),
         by: if a.by == "time" {

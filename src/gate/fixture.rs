@@ -105,6 +105,7 @@ pub fn record(
         inputs_sha256: inputs,
         reference_sha256: Some(loaded.file_sha256),
         series: None,
+        series_reason: None,
     }
 }
 
@@ -123,6 +124,7 @@ pub fn summary(records: Vec<Record>) -> Summary {
         },
         records,
         fits: vec![],
+        selection: None,
     }
 }
 

@@ -47,7 +47,7 @@ mod fixture;
 
 pub use load::{load_summary, stability_beside};
 pub use regression::{DEFAULT_FACTOR, compare_baseline, is_baseline_row, update_baseline};
-pub use table::{exit_code, print_table};
+pub use table::{exit_code, print_table, print_verdict, verdict_line};
 pub use validate::known_metrics;
 use validate::{check_threshold, check_where_values, describe, keep};
 
@@ -57,6 +57,9 @@ use validate::{check_threshold, check_where_values, describe, keep};
 pub enum Verdict {
     Pass,
     Fail,
+    /// Not evaluated, and why (`note`): outside the run's selection, or a stability gate
+    /// without `stability.json` (a failure under `--require-stability`).
+    Skip,
 }
 
 /// One evaluated row: a gated (or baseline-compared) record and metric.
@@ -116,6 +119,12 @@ pub struct GateOptions {
     pub factor: f64,
     /// The references folder (`references/`).
     pub references: PathBuf,
+    /// Only these cases and scenes (`--case`, `--scene`; empty: all).
+    pub cases: Vec<String>,
+    pub scenes: Vec<String>,
+    /// A gate that needs `stability.json` fails when it is absent (`--require-stability`);
+    /// otherwise it is skipped.
+    pub require_stability: bool,
 }
 
 impl GateOptions {
@@ -126,9 +135,15 @@ impl GateOptions {
             baseline: None,
             factor: DEFAULT_FACTOR,
             references,
+            cases: vec![],
+            scenes: vec![],
+            require_stability: false,
         }
     }
 }
+
+/// Why a gate row needing `stability.json` is not evaluated without it.
+pub const NO_STABILITY: &str = "not run: no stability.json beside the summary";
 
 /// Input the gate cannot use (exit 2). Every message names the file and the key or value.
 #[derive(Debug, thiserror::Error)]
@@ -170,6 +185,9 @@ pub enum GateError {
     /// `--update-baseline` could not write.
     #[error("{path}: cannot write the baseline: {message}")]
     Write { path: String, message: String },
+    /// The gates' tier is not the summary's (`check_tier`).
+    #[error("{path}: {message}")]
+    Tier { path: String, message: String },
     /// The baseline has no run in common with the summary (another tier, other cases).
     #[error(
         "{path}: the baseline shares no run (case, scene, variant, dt|tol) with the summary: nothing to compare (another tier?)"
@@ -453,6 +471,38 @@ pub fn is_quick_summary(cases: &[Case], summary: &Summary) -> bool {
     any
 }
 
+/// The tier of a summary: its recorded selection's, else what its ladder points show
+/// (summaries written before `selection`).
+pub fn summary_tier(cases: &[Case], summary: &Summary) -> crate::selection::Tier {
+    match &summary.selection {
+        Some(s) => s.tier,
+        None => crate::selection::Tier::of(is_quick_summary(cases, summary)),
+    }
+}
+
+/// Bad input when the gates' tier is not the summary's: the other tier's gates name ladder
+/// points the summary does not have (the quick order-1 steps are not on the full ladder).
+pub fn check_tier(summary: &Summary, path: &Path, quick: bool) -> Result<(), GateError> {
+    let Some(sel) = &summary.selection else {
+        return Ok(());
+    };
+    let want = crate::selection::Tier::of(quick);
+    if sel.tier == want {
+        return Ok(());
+    }
+    Err(GateError::Tier {
+        path: path.display().to_string(),
+        message: match sel.tier {
+            crate::selection::Tier::Quick => {
+                "the summary is a quick-tier run (`selection.tier`): gate it with --quick".into()
+            }
+            crate::selection::Tier::Full => "the summary is a full-tier run (`selection.tier`), \
+                 whose ladders do not hold every quick-ladder point: gate it without --quick"
+                .into(),
+        },
+    })
+}
+
 /// Evaluates the gates of `cases` (only `quick = true` ones with `opts.quick`) against the
 /// records of `summary` and `stability`, then, with `opts.baseline`, compares `summary` with
 /// the baseline. Rows come in case, gate, scene, registry and ladder order, baseline rows
@@ -484,7 +534,8 @@ pub fn evaluate(
         cache: BTreeMap::new(),
     };
     let mut rows = vec![];
-    for c in cases {
+    let wanted = |list: &[String], name: &str| list.is_empty() || list.iter().any(|x| x == name);
+    for c in cases.iter().filter(|c| wanted(&opts.cases, &c.name)) {
         let gated: Vec<(usize, &Gate)> = c
             .gates
             .iter()
@@ -502,6 +553,18 @@ pub fn evaluate(
             .collect::<Result<Vec<_>, _>>()?;
         for (i, g) in gated {
             for p in expand(c, i, g, &problems, opts.quick)? {
+                if !wanted(&opts.scenes, p.problem.scene()) {
+                    continue;
+                }
+                if let Some(why) = skip_reason(&p, g, summary, stability) {
+                    let mut row = judge(c, g, &p, None, &mut refs, false);
+                    row.note = why;
+                    if !(opts.require_stability && row.note == NO_STABILITY) {
+                        row.verdict = Verdict::Skip;
+                    }
+                    rows.push(row);
+                    continue;
+                }
                 let rec = index.find(&c.name, &p, &g.metric);
                 let mut row = judge(c, g, &p, rec, &mut refs, stability.is_some());
                 if rec.is_none() && !summary.records.is_empty() {
@@ -523,6 +586,43 @@ pub fn evaluate(
         )?);
     }
     Ok(rows)
+}
+
+/// Why a gated point is not evaluated: it lies outside what the run (or the stability study)
+/// was asked to compute, or it needs `stability.json` and there is none.
+fn skip_reason(
+    p: &Point,
+    g: &Gate,
+    summary: &Summary,
+    stability: Option<&Summary>,
+) -> Option<String> {
+    let v = p.variant;
+    let key = crate::summary::RunKey::new(
+        p.problem.case(),
+        p.problem.scene(),
+        v.param,
+        v.integrator,
+        v.formulation,
+    );
+    let outside = |s: &Summary| {
+        s.selection
+            .as_ref()
+            .filter(|sel| !sel.admits(&key))
+            .cloned()
+    };
+    if !per_variant(&g.metric) {
+        return outside(summary)
+            .map(|sel| format!("not run: outside the run's selection ({})", sel.flags()));
+    }
+    match stability {
+        None => Some(NO_STABILITY.into()),
+        Some(st) => outside(st).map(|sel| {
+            format!(
+                "not run: outside the stability study's selection ({})",
+                sel.flags()
+            )
+        }),
+    }
 }
 
 /// Why a gated point may be missing when the summary is of the other tier than the gates

@@ -336,7 +336,7 @@ mod tests {
         let n = rows.len();
         assert_eq!(
             t,
-            format!("baseline: {n} comparisons, 0 regressions\n{n} passed, 0 failed\n")
+            format!("baseline: {n} comparisons, 0 regressions\n{n} passed, 0 failed, 0 skipped\n")
         );
     }
 

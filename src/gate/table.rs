@@ -1,7 +1,8 @@
 //! The gate's terminal table and exit code: one line per gate row (case, variant, metric,
 //! value, threshold, verdict and, for a failure, why), of the baseline rows only the failing
-//! ones and a count line, then `N passed, N failed` as the last line. Exit 0 when every row
-//! passes, 1 when any fails (bad input, exit 2, never gets this far).
+//! ones and a count line, the skipped rows counted by reason, then `N passed, N failed,
+//! N skipped` as the last line. Exit 0 when no row fails (skipped rows do not), 1 when any
+//! fails (bad input, exit 2, never gets this far).
 use std::io::Write;
 
 use super::{GateRow, Verdict, WORK_METRICS, is_baseline_row};
@@ -28,17 +29,37 @@ fn value(r: &GateRow) -> String {
     }
 }
 
-/// Prints the table; its last line is `N passed, N failed` (over all rows, baseline
-/// comparisons included).
+/// Prints the table; its last line is `N passed, N failed, N skipped` (over all rows,
+/// baseline comparisons included).
 pub fn print_table(rows: &[GateRow], out: &mut impl Write) -> std::io::Result<()> {
+    print_rows(rows, out)?;
+    print_tail(rows, out)
+}
+
+/// The verdict alone: the failing rows' table (none when every row passes), the skipped
+/// rows by reason and the last line (the main job's account of the gate).
+pub fn print_verdict(rows: &[GateRow], out: &mut impl Write) -> std::io::Result<()> {
+    let failing: Vec<GateRow> = rows
+        .iter()
+        .filter(|r| r.verdict == Verdict::Fail)
+        .cloned()
+        .collect();
+    print_rows(&failing, out)?;
+    print_tail(rows, out)
+}
+
+/// The table of the rows shown (every row but the skipped and the passing baseline ones).
+fn print_rows(rows: &[GateRow], out: &mut impl Write) -> std::io::Result<()> {
     let shown: Vec<[String; 6]> = rows
         .iter()
+        .filter(|r| r.verdict != Verdict::Skip)
         .filter(|r| !is_baseline_row(r) || r.verdict == Verdict::Fail)
         .map(|r| {
             let verdict = match r.verdict {
                 Verdict::Pass => "PASS".to_string(),
                 Verdict::Fail if r.note.is_empty() => "FAIL".to_string(),
                 Verdict::Fail => format!("FAIL  {}", r.note),
+                Verdict::Skip => "skip".to_string(),
             };
             [
                 r.key.case.clone(),
@@ -83,6 +104,11 @@ pub fn print_table(rows: &[GateRow], out: &mut impl Write) -> std::io::Result<()
             )?;
         }
     }
+    Ok(())
+}
+
+/// The baseline count, the skipped rows by reason and the verdict line.
+fn print_tail(rows: &[GateRow], out: &mut impl Write) -> std::io::Result<()> {
     let baseline: Vec<&GateRow> = rows.iter().filter(|r| is_baseline_row(r)).collect();
     if !baseline.is_empty() {
         let m = baseline
@@ -95,8 +121,29 @@ pub fn print_table(rows: &[GateRow], out: &mut impl Write) -> std::io::Result<()
             baseline.len()
         )?;
     }
-    let failed = rows.iter().filter(|r| r.verdict == Verdict::Fail).count();
-    writeln!(out, "{} passed, {failed} failed", rows.len() - failed)
+    // Skipped rows by reason, one line each (a filtered run skips hundreds).
+    let mut skipped: Vec<(&str, usize)> = vec![];
+    for r in rows.iter().filter(|r| r.verdict == Verdict::Skip) {
+        match skipped.iter_mut().find(|(n, _)| *n == r.note) {
+            Some((_, k)) => *k += 1,
+            None => skipped.push((&r.note, 1)),
+        }
+    }
+    for (note, k) in &skipped {
+        writeln!(out, "skipped {k}: {note}")?;
+    }
+    writeln!(out, "{}", verdict_line(rows))
+}
+
+/// `N passed, N failed, N skipped`: the gate's last line, and the report's gate summary.
+pub fn verdict_line(rows: &[GateRow]) -> String {
+    let count = |v: Verdict| rows.iter().filter(|r| r.verdict == v).count();
+    format!(
+        "{} passed, {} failed, {} skipped",
+        count(Verdict::Pass),
+        count(Verdict::Fail),
+        count(Verdict::Skip)
+    )
 }
 
 /// 0 when every row passes, 1 when any fails.

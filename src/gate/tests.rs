@@ -62,7 +62,11 @@ fn passing_summary_passes() {
     assert!(rows.iter().all(|r| r.verdict == Verdict::Pass), "{rows:?}");
     assert_eq!(exit_code(&rows), 0);
     let t = table(&rows);
-    assert_eq!(t.lines().last(), Some("4 passed, 0 failed"), "{t}");
+    assert_eq!(
+        t.lines().last(),
+        Some("4 passed, 0 failed, 0 skipped"),
+        "{t}"
+    );
     // The conditioning gate is a minimum over two parameterizations, in registry order.
     let cond: Vec<&str> = rows
         .iter()
@@ -100,7 +104,7 @@ fn ten_times_worse_fails() {
     ] {
         assert!(line.contains(part), "{part} not in {line}");
     }
-    assert_eq!(t.lines().last(), Some("3 passed, 1 failed"));
+    assert_eq!(t.lines().last(), Some("3 passed, 1 failed, 0 skipped"));
     // A value exactly at the maximum passes (the bound is inclusive).
     rec_mut(&mut s, "rk4", 1.0e-2)
         .metrics

@@ -170,6 +170,7 @@ mod tests {
                     reason: "-".into(),
                 }],
                 avoid: vec![],
+                robustness: vec![],
             }],
         };
         let h = html(&a);

@@ -102,6 +102,7 @@ fn record(
         inputs_sha256: "0".repeat(64),
         reference_sha256: None,
         series: None,
+        series_reason: None,
     }
 }
 
@@ -236,6 +237,7 @@ pub fn summary() -> Summary {
         },
         records,
         fits,
+        selection: None,
     }
 }
 

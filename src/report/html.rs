@@ -302,10 +302,15 @@ pub fn render(page: &Page) -> String {
     s.push_str("</style>\n</head>\n<body>\n<header>\n<h1>mbdbench report</h1>\n");
     s.push_str(&env_p(&page.env_line));
     s.push_str(&format!("<p class=\"key\">{}</p>\n", esc(&page.key_text)));
-    if let Some((pass, fail)) = page.gate_summary {
+    if let Some(g) = &page.gate_summary {
         s.push_str(&format!(
-            "<p><b>Gates:</b> {pass} passed, {fail} failed.</p>\n"
+            "<p class=\"gates\"><b>Gates:</b> {}.",
+            esc(&g.line)
         ));
+        for (why, k) in &g.skipped {
+            s.push_str(&format!(" Skipped {k}: {}.", esc(why)));
+        }
+        s.push_str("</p>\n");
     }
     s.push_str("<p>Cases: ");
     let names: Vec<String> = page

@@ -1,9 +1,10 @@
-//! `summary.md`: the report's text and tables for a CI log or a pull-request comment
-//! (GitHub-flavoured Markdown): the environment line, per case the "what this shows"
-//! paragraph and the same tables as the HTML page (gates, failures, largest completed step,
-//! the matrix of each scene, the stability study's tables, n/a), long tables folded in
-//! `<details>` blocks; a shortened cell is written in full. No plots: their
-//! SVG files are listed by path. Gate colours become `[pass]` / `[FAIL]` after the value.
+//! `summary.md`: the report's answer for a CI log or a pull-request comment
+//! (GitHub-flavoured Markdown, kept well under a comment's 65,536 characters): the
+//! environment line, the gate verdict (the gate's own last line, the skipped rows' reasons,
+//! the failing rows), the recommendation, and one line per case (scenes, variants, runs,
+//! typed failures by kind, its gates) pointing to its section of `index.html`, which holds
+//! every table and plot. Long tables fold in `<details>` blocks; a shortened cell is written
+//! in full; gate colours become `[pass]` / `[FAIL]` after the value.
 use super::tables::{Table, Tone};
 use super::{CaseSection, Page};
 
@@ -85,66 +86,58 @@ pub fn table(t: &Table, open_below: usize) -> String {
     s
 }
 
-fn case_section(c: &CaseSection, env: &str, svg_dir: &str) -> String {
-    let mut s = format!("## {}", text(&c.name));
-    if !c.title.is_empty() {
-        s.push_str(&format!(" — {}", text(&c.title)));
-    }
-    s.push_str(&format!("\n\n`{env}`\n\n### What this shows\n\n"));
-    for sentence in &c.narrative {
-        s.push_str(&format!("- {}\n", text(sentence)));
-    }
-    s.push('\n');
-    if let Some(g) = &c.gates {
-        s.push_str(&table(g, 40));
-    }
-    s.push_str(&table(&c.failures, 20));
-    s.push_str(&table(&c.largest, 0));
-    for sc in &c.scenes {
-        s.push_str(&table(&sc.matrix, 0));
-    }
-    if let Some(st) = &c.stability {
-        s.push_str(&format!("### Stability\n\n`{}`\n\n", st.env_line));
-        for sentence in &st.text {
-            s.push_str(&format!("- {}\n", text(sentence)));
-        }
-        s.push('\n');
-        for t in st.tables() {
-            s.push_str(&table(t, 40));
-        }
-    }
-    s.push_str(&table(&c.na, 20));
-    let n: usize = c.stability.as_ref().map_or(0, |st| st.figures().count())
-        + c.across.len()
-        + c.scenes
-            .iter()
-            .map(|x| x.work_precision.len() + x.convergence.len() + x.timeseries.len())
-            .sum::<usize>();
-    s.push_str(&format!(
-        "Plots ({n}): `{svg_dir}/{}/` and `index.html`.\n\n",
-        super::safe(&c.name)
-    ));
-    s
+/// The failing rows of a case's gate table (None: no gates, or none failed).
+fn failing_gates(c: &CaseSection) -> Option<Table> {
+    let g = c.gates.as_ref()?;
+    let rows: Vec<_> = g
+        .rows
+        .iter()
+        .filter(|r| r.iter().any(|x| x.tone == Tone::Fail))
+        .cloned()
+        .collect();
+    (!rows.is_empty()).then(|| Table {
+        rows,
+        title: format!("{}: failing gates", c.name),
+        ..g.clone()
+    })
 }
 
-/// The whole document.
+/// The whole document: the environment, the gate verdict (and the failing rows), the
+/// recommendation, and one line per case pointing to its section of `index.html`.
 pub fn render(page: &Page) -> String {
-    let mut s = format!(
-        "# mbdbench report\n\n`{}`\n\n{}\n\n",
-        page.env_line, page.key_text
-    );
-    if let Some((pass, fail)) = page.gate_summary {
-        s.push_str(&format!("**Gates: {pass} passed, {fail} failed.**\n\n"));
+    let mut s = format!("# mbdbench report\n\n`{}`\n\n", page.env_line);
+    if let Some(g) = &page.gate_summary {
+        s.push_str(&format!("**Gates: {}.**", text(&g.line)));
+        for (why, k) in &g.skipped {
+            s.push_str(&format!(" Skipped {k}: {}.", text(why)));
+        }
+        s.push_str("\n\n");
+    }
+    for t in page.cases.iter().filter_map(failing_gates) {
+        s.push_str(&table(&t, 40));
     }
     if let Some(a) = &page.advice {
         s.push_str(&super::advice::markdown(a));
     }
+    s.push_str("## Cases\n\n");
     if page.cases.is_empty() {
         s.push_str("No cases (no data).\n");
     }
     for c in &page.cases {
-        s.push_str(&case_section(c, &page.env_line, "svg"));
+        s.push_str(&format!("- **{}**", text(&c.name)));
+        if !c.title.is_empty() {
+            s.push_str(&format!(" ({})", text(&c.title)));
+        }
+        s.push_str(&format!(
+            ": {}. Plots and tables: `index.html#{}`.\n",
+            text(&c.line),
+            text(&super::advice::anchor(&c.name))
+        ));
     }
+    s.push_str(
+        "\nThe plots, every table (the variants x metrics matrices, failures, largest steps, \
+         n/a) and the stability study are in `index.html` beside this file.\n",
+    );
     s
 }
 

@@ -97,6 +97,8 @@ pub struct CaseSection {
     pub na: tables::Table,
     /// The stability study's part (None: no stability.json, or nothing on this case).
     pub stability: Option<stability::StabilitySection>,
+    /// One line for `summary.md`: scenes, variants, runs, failures by kind, gates.
+    pub line: String,
 }
 
 /// The whole report as data (rendered by `html` and `markdown`).
@@ -107,10 +109,79 @@ pub struct Page {
     /// How to read the plots (the families' keys).
     pub key_text: String,
     pub cases: Vec<CaseSection>,
-    /// (passed, failed) gate rows, when gate rows were given.
-    pub gate_summary: Option<(usize, usize)>,
+    /// The gate verdict when gate rows were given: `N passed, N failed, N skipped` (the
+    /// gate's own last line) and the skipped rows' reasons with their counts.
+    pub gate_summary: Option<GateSummary>,
     /// The recommendation, when given (`write_report`).
     pub advice: Option<crate::advise::Advice>,
+}
+
+/// The gate verdict of the page (the same rows and words as `mbdbench gate`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GateSummary {
+    pub line: String,
+    pub failed: usize,
+    /// (reason, rows) of the skipped rows.
+    pub skipped: Vec<(String, usize)>,
+}
+
+impl GateSummary {
+    fn of(rows: &[GateRow]) -> GateSummary {
+        let mut skipped: Vec<(String, usize)> = vec![];
+        for r in rows.iter().filter(|r| r.verdict == Verdict::Skip) {
+            match skipped.iter_mut().find(|(n, _)| *n == r.note) {
+                Some((_, k)) => *k += 1,
+                None => skipped.push((r.note.clone(), 1)),
+            }
+        }
+        GateSummary {
+            line: crate::gate::verdict_line(rows),
+            failed: rows.iter().filter(|r| r.verdict == Verdict::Fail).count(),
+            skipped,
+        }
+    }
+}
+
+/// The one-line account of a case for `summary.md`.
+fn case_line(cv: &data::CaseView, gate_rows: Option<&[GateRow]>) -> String {
+    let mut variants: std::collections::HashSet<&data::VariantKey> = Default::default();
+    let (mut runs, mut failed) = (0usize, 0usize);
+    let mut kinds: std::collections::BTreeMap<&'static str, usize> = Default::default();
+    for sv in &cv.scenes {
+        for v in &sv.variants {
+            variants.insert(&v.key);
+            for r in &v.runs {
+                runs += 1;
+                if let Some(f) = &r.failure {
+                    failed += 1;
+                    *kinds.entry(f.kind.name()).or_default() += 1;
+                }
+            }
+        }
+    }
+    let mut line = format!(
+        "{}, {} variants, {runs} runs",
+        crate::summary::count(cv.scenes.len(), "scene"),
+        variants.len()
+    );
+    if failed > 0 {
+        let k: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        line.push_str(&format!(
+            " ({failed} with a typed failure: {})",
+            k.join(", ")
+        ));
+    }
+    if let Some(rows) = gate_rows {
+        let mine: Vec<GateRow> = rows
+            .iter()
+            .filter(|r| r.key.case == cv.name)
+            .cloned()
+            .collect();
+        if !mine.is_empty() {
+            line.push_str(&format!("; gates: {}", crate::gate::verdict_line(&mine)));
+        }
+    }
+    line
 }
 
 /// The files written.
@@ -239,13 +310,11 @@ pub fn build_page(
                 na: tables::not_applicable(cv),
                 stability: stability
                     .and_then(|src| stability::section(src, &cv.name, cv.case, &foot)),
+                line: case_line(cv, gate_rows),
             }
         })
         .collect();
-    let gate_summary = gate_rows.map(|g| {
-        let fail = g.iter().filter(|r| r.verdict == Verdict::Fail).count();
-        (g.len() - fail, fail)
-    });
+    let gate_summary = gate_rows.map(GateSummary::of);
     Page {
         env_line: env_line(summary),
         key_text: key_text(&views),
@@ -428,11 +497,14 @@ mod tests {
             "nine_spring / large: variants x metrics",
             "nine_spring: not applicable",
         ] {
-            assert!(md.contains(title), "{title}");
             assert!(html.contains(title), "{title}");
         }
-        // The failing Euler run shows in the failure table with its kind and times.
-        assert!(md.contains("| large | euler_zxz | rk4 | body | dt 2e-2, 1e-2, 5e-3 | singular_chart | 0.5, 0.6, 0.7 |"), "{md}");
+        // summary.md has a line per case (its failures by kind) and points to the page.
+        assert!(
+            md.contains("39 runs (3 with a typed failure: 3 singular_chart)"),
+            "{md}"
+        );
+        assert!(md.contains("index.html#case-nine_spring"), "{md}");
         let _ = std::fs::remove_dir_all(&dir);
     }
 
@@ -534,14 +606,21 @@ mod tests {
             so3_rk4_body[1][col("energy_drift_max")].tone,
             tables::Tone::Fail
         );
-        assert_eq!(page.gate_summary, Some((1, 1)));
+        let g = page.gate_summary.as_ref().unwrap();
+        assert_eq!(g.line, "1 passed, 1 failed, 0 skipped");
+        assert_eq!(g.failed, 1);
         let g = c.gates.as_ref().unwrap();
         assert_eq!(g.rows.len(), 2);
         let html = html::render(&page);
         assert!(html.contains("<td class=\"pass\">") && html.contains("<td class=\"fail\">"));
         let md = markdown::render(&page);
-        assert!(md.contains("[pass]") && md.contains("[FAIL]"));
-        assert!(md.contains("Gates: 1 passed, 1 failed."));
+        // summary.md lists the failing rows only.
+        assert!(
+            md.contains(": failing gates") && md.contains("| FAIL |"),
+            "{md}"
+        );
+        assert!(!md.contains("| pass |"), "{md}");
+        assert!(md.contains("Gates: 1 passed, 1 failed, 0 skipped."));
         // Without gate rows nothing is coloured.
         let plain = build_page(&s, &dir, &[], None, None);
         assert!(

@@ -243,7 +243,10 @@ fn gates_of<'g>(r: &Record, gates: &'g [GateRow]) -> Vec<&'g GateRow> {
 
 fn tone(gates: Option<&[GateRow]>, matched: &[&GateRow], metric: &str) -> Tone {
     let Some(_) = gates else { return Tone::Plain };
-    let mine: Vec<_> = matched.iter().filter(|g| g.metric == metric).collect();
+    let mine: Vec<_> = matched
+        .iter()
+        .filter(|g| g.metric == metric && g.verdict != Verdict::Skip)
+        .collect();
     if mine.is_empty() {
         Tone::Neutral
     } else if mine.iter().any(|g| g.verdict == Verdict::Fail) {
@@ -381,6 +384,7 @@ pub fn gate_table(cv: &CaseView, gates: Option<&[GateRow]>) -> Option<Table> {
             let t = match g.verdict {
                 Verdict::Pass => Tone::Pass,
                 Verdict::Fail => Tone::Fail,
+                Verdict::Skip => Tone::Neutral,
             };
             vec![
                 Cell::plain(&g.key.scene),
@@ -395,6 +399,7 @@ pub fn gate_table(cv: &CaseView, gates: Option<&[GateRow]>) -> Option<Table> {
                     text: match g.verdict {
                         Verdict::Pass => "pass".into(),
                         Verdict::Fail => "FAIL".into(),
+                        Verdict::Skip => "skip".into(),
                     },
                     tone: t,
                     full: None,

@@ -184,11 +184,20 @@ pub fn run_study(
 ) -> Result<crate::summary::Summary, String> {
     // Unknown names in the filters are bad input, whichever family they would select.
     crate::plan::select(cases, case_filter, scene_filter)?;
+    let selection = crate::selection::Selection {
+        tier: crate::selection::Tier::of(opts.quick),
+        cases: case_filter.to_vec(),
+        scenes: scene_filter.to_vec(),
+        params: filter.param.clone(),
+        integrators: filter.integrator.clone(),
+        formulations: filter.formulation.clone(),
+        t_end: None,
+    };
     // The parts below are the rigid body's (each file's FAMILIES).
     let Some((cases, case_filter, scene_filter)) =
         part_cases(cases, search::FAMILIES, case_filter, scene_filter)
     else {
-        return write_study(Part::default(), opts);
+        return write_study(Part::default(), selection, opts);
     };
     let (cases, case_filter, scene_filter) = (&cases[..], &case_filter[..], &scene_filter[..]);
     let scenes = study_scenes(cases, case_filter, scene_filter, opts.quick)?;
@@ -221,7 +230,7 @@ pub fn run_study(
     let sensitive = only(cases, sensitivity::FAMILIES);
     let plans = crate::model::rigid_body::plan::plans(&sensitive, case_filter, scene_filter)?;
     all.extend(sensitivity::study(&sensitive, &plans, opts)?);
-    write_study(all, opts)
+    write_study(all, selection, opts)
 }
 
 /// The cases of `families`.
@@ -256,7 +265,11 @@ fn part_cases(
 }
 
 /// Sorts the study's records, writes its series and `stability.json`; returns the summary.
-fn write_study(all: Part, opts: &StudyOptions) -> Result<crate::summary::Summary, String> {
+fn write_study(
+    all: Part,
+    selection: crate::selection::Selection,
+    opts: &StudyOptions,
+) -> Result<crate::summary::Summary, String> {
     let mut records = all.records;
     records.sort_by_key(record_order);
     let mut staging = crate::output::Staging::begin(&opts.out, crate::output::Writer::Stability)?;
@@ -271,6 +284,7 @@ fn write_study(all: Part, opts: &StudyOptions) -> Result<crate::summary::Summary
         env: crate::summary::Env::current(opts.jobs, None),
         records,
         fits: all.fits,
+        selection: Some(selection),
     };
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     staging.write("stability.json", text.as_bytes())?;

@@ -634,6 +634,7 @@ pub fn record(v: &Variant, scene: &StudyScene, stable: &Found, accurate: &Found)
         inputs_sha256: scene.plan.inputs_sha256.clone(),
         reference_sha256: None,
         series: None,
+        series_reason: None,
     }
 }
 

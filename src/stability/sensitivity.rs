@@ -227,6 +227,7 @@ fn record(
         inputs_sha256: plan.inputs_sha256.clone(),
         reference_sha256: None,
         series: series.as_ref().map(|s| s.0.clone()),
+        series_reason: None,
     };
     (rec, series)
 }

@@ -196,6 +196,7 @@ fn run_one(
         inputs_sha256: plan.inputs_sha256.clone(),
         reference_sha256: None,
         series: None,
+        series_reason: None,
     }
 }
 

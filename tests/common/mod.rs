@@ -73,6 +73,9 @@ pub fn run(
         progress: false,
         repeats: 0,
         serial_timing: false,
+        cases: vec![],
+        scenes: vec![],
+        base: None,
     };
     let s = suite::run_catalogue(problems(case_name, scenes), &filter, &opts).unwrap();
     let _ = std::fs::remove_dir_all(&out);

@@ -584,6 +584,9 @@ proptest! {
             progress: false,
             repeats: 0,
             serial_timing: false,
+            cases: vec![],
+            scenes: vec![],
+            base: None,
         };
         let filter = VariantFilter {
             param: vec![param.to_string()],

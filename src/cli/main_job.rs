@@ -1,0 +1,68 @@
+//! The main job (`mbdbench` with no command; `cargo run --release`): the whole catalogue on
+//! its full ladders into `reports/latest`, the quick tier of the stability study beside it
+//! (`--full-stability`: the full study), the report (so its "at what step" part and the
+//! gate see `stability.json`), then, last where the terminal shows them, the recommendation
+//! and the gate's verdict: the failing rows, the skipped ones by reason and
+//! `N passed, N failed, N skipped`, exactly what `mbdbench gate --require-stability` says on
+//! the same files and what the page's "Gates" line says. Exit 0 when every gate passes, 1
+//! when any fails. About 3 minutes on 2 cores (README, "Commands").
+use super::*;
+
+pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> {
+    let t0 = std::time::Instant::now();
+    let args = RunArgs::default();
+    let code = cmd_run(common, &args)?;
+    if code != EXIT_OK {
+        return Ok(code);
+    }
+    let code = cmd_stability(
+        common,
+        &StabilityArgs {
+            filters: Filters::default(),
+            quick: !full_stability,
+            jobs: None,
+            out: args.out.clone(),
+            verbose: false,
+        },
+    )?;
+    if code != EXIT_OK {
+        return Ok(code);
+    }
+    let summary = args.out.join("summary.json");
+    let code = cmd_report(common, &summary, None)?;
+    if code != EXIT_OK {
+        return Ok(code);
+    }
+    crate::say!("");
+    cmd_advise(
+        common,
+        &AdviseArgs {
+            summary: summary.clone(),
+            case: vec![],
+            target: vec![],
+            by: "work".into(),
+            json: false,
+        },
+    )?;
+    crate::say!("\nGates (mbdbench gate --require-stability; full table in index.html):");
+    let code = cmd_gate(
+        common,
+        &GateArgs {
+            summary,
+            quick: false,
+            baseline: None,
+            factor: crate::gate::DEFAULT_FACTOR,
+            update_baseline: false,
+            case: vec![],
+            scene: vec![],
+            require_stability: true,
+            verdict_only: true,
+        },
+    )?;
+    crate::say!(
+        "main job: {:.0} s; report {}",
+        t0.elapsed().as_secs_f64(),
+        args.out.join("index.html").display()
+    );
+    Ok(code)
+}

@@ -1,0 +1,237 @@
+//! What a `run` (or `stability`) was asked to compute, recorded in its summary as
+//! `selection`: the tier (`quick` or `full`), the `--case`, `--scene`, `--param`,
+//! `--integrator` and `--formulation` filters (an empty list selects every name) and a
+//! `--t-end` override. Readers use it instead of guessing from the records:
+//!
+//! - `gate` and the report skip (and say so) the gated points that lie outside the run's
+//!   selection, and know the summary's tier without inferring it from its ladder points;
+//!   a point inside the selection without a record still fails (a run that lost a case
+//!   cannot pass by omission);
+//! - a filtered `run` into a folder that holds a broader summary merges into it when the old
+//!   selection covers the new one (`covers`) and both come from the same commit and tier
+//!   without a `--t-end`, replacing exactly the records the new run selects (`admits`).
+//!
+//! Summaries written before the field existed have no selection: readers then treat them as
+//! selecting everything, of the tier their ladder points show.
+//!
+//! # Example
+//!
+//! ```
+//! use mbdbench::selection::{Selection, Tier};
+//! use mbdbench::summary::RunKey;
+//!
+//! let all = Selection::everything(Tier::Full);
+//! let mut one = Selection::everything(Tier::Full);
+//! one.cases = vec!["nine_spring".into()];
+//! assert!(all.covers(&one) && !one.covers(&all));
+//! let k = RunKey::new("gimbal_lock", "tumble", "so3", "rk4", "body");
+//! assert!(all.admits(&k) && !one.admits(&k));
+//! assert_eq!(one.flags(), "--case nine_spring");
+//! ```
+use serde::{Deserialize, Serialize};
+
+use crate::summary::RunKey;
+
+/// The ladder tier of a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Tier {
+    /// `--quick`: the cases' quick ladders.
+    Quick,
+    /// The full ladders.
+    Full,
+}
+
+impl Tier {
+    /// `quick` or `full`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Tier::Quick => "quick",
+            Tier::Full => "full",
+        }
+    }
+
+    /// The tier of `--quick`.
+    pub fn of(quick: bool) -> Tier {
+        if quick { Tier::Quick } else { Tier::Full }
+    }
+}
+
+/// A run's selection (an empty list: every name).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Selection {
+    pub tier: Tier,
+    #[serde(default)]
+    pub cases: Vec<String>,
+    #[serde(default)]
+    pub scenes: Vec<String>,
+    #[serde(default)]
+    pub params: Vec<String>,
+    #[serde(default)]
+    pub integrators: Vec<String>,
+    #[serde(default)]
+    pub formulations: Vec<String>,
+    /// `--t-end`: every scene's horizon overridden (errors against references then absent).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t_end: Option<f64>,
+}
+
+fn keep(list: &[String], name: &str) -> bool {
+    list.is_empty() || list.iter().any(|x| x == name)
+}
+
+/// Whether the filter `wide` selects every name `narrow` selects.
+fn wider(wide: &[String], narrow: &[String]) -> bool {
+    wide.is_empty() || (!narrow.is_empty() && narrow.iter().all(|n| wide.contains(n)))
+}
+
+impl Selection {
+    /// Every case, scene and variant of a tier.
+    pub fn everything(tier: Tier) -> Selection {
+        Selection {
+            tier,
+            cases: vec![],
+            scenes: vec![],
+            params: vec![],
+            integrators: vec![],
+            formulations: vec![],
+            t_end: None,
+        }
+    }
+
+    /// Whether a run of this key is selected (its ladder point is the tier's business).
+    pub fn admits(&self, k: &RunKey) -> bool {
+        keep(&self.cases, &k.case)
+            && keep(&self.scenes, &k.scene)
+            && keep(&self.params, &k.param)
+            && keep(&self.integrators, &k.integrator)
+            && keep(&self.formulations, &k.formulation)
+    }
+
+    /// Whether this selection holds every run `other` selects, at the same tier and horizon.
+    pub fn covers(&self, other: &Selection) -> bool {
+        self.tier == other.tier
+            && self.t_end == other.t_end
+            && wider(&self.cases, &other.cases)
+            && wider(&self.scenes, &other.scenes)
+            && wider(&self.params, &other.params)
+            && wider(&self.integrators, &other.integrators)
+            && wider(&self.formulations, &other.formulations)
+    }
+
+    /// Whether nothing is filtered out.
+    pub fn is_everything(&self) -> bool {
+        self.filters().is_empty() && self.t_end.is_none()
+    }
+
+    fn filters(&self) -> Vec<(&'static str, &[String])> {
+        [
+            ("--case", &self.cases[..]),
+            ("--scene", &self.scenes[..]),
+            ("--param", &self.params[..]),
+            ("--integrator", &self.integrators[..]),
+            ("--formulation", &self.formulations[..]),
+        ]
+        .into_iter()
+        .filter(|(_, l)| !l.is_empty())
+        .collect()
+    }
+
+    /// The filters as command-line flags (`--case nine_spring --param so3`), or `""`.
+    pub fn flags(&self) -> String {
+        let mut parts: Vec<String> = self
+            .filters()
+            .into_iter()
+            .flat_map(|(flag, l)| l.iter().map(move |n| format!("{flag} {n}")))
+            .collect();
+        if let Some(t) = self.t_end {
+            parts.push(format!("--t-end {t}"));
+        }
+        parts.join(" ")
+    }
+
+    /// A file-name-safe slug of the filters (`nine_spring-so3`), `""` for everything.
+    pub fn slug(&self) -> String {
+        let mut parts: Vec<String> = self
+            .filters()
+            .into_iter()
+            .flat_map(|(_, l)| l.iter().cloned())
+            .collect();
+        if let Some(t) = self.t_end {
+            parts.push(format!("t{t}"));
+        }
+        parts
+            .join("-")
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .take(80)
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sel(cases: &[&str], params: &[&str]) -> Selection {
+        let mut s = Selection::everything(Tier::Quick);
+        s.cases = cases.iter().map(|x| x.to_string()).collect();
+        s.params = params.iter().map(|x| x.to_string()).collect();
+        s
+    }
+
+    /// `covers` is the subset order of the selected runs: reflexive, everything covers any
+    /// filter of its tier, a filter never covers a wider one, and tiers or horizons never mix.
+    #[test]
+    fn covers_is_the_subset_order() {
+        let all = Selection::everything(Tier::Quick);
+        let a = sel(&["nine_spring"], &[]);
+        let ab = sel(&["nine_spring", "free_body"], &[]);
+        let a_so3 = sel(&["nine_spring"], &["so3"]);
+        for s in [&all, &a, &ab, &a_so3] {
+            assert!(s.covers(s));
+            assert!(all.covers(s));
+        }
+        assert!(ab.covers(&a) && !a.covers(&ab));
+        assert!(a.covers(&a_so3) && !a_so3.covers(&a));
+        assert!(!a.covers(&sel(&["free_body"], &[])));
+        assert!(!Selection::everything(Tier::Full).covers(&all));
+        let mut t = all.clone();
+        t.t_end = Some(1.0);
+        assert!(!all.covers(&t) && !t.covers(&all));
+    }
+
+    /// `admits` selects a key exactly when every filter names it (or is empty).
+    #[test]
+    fn admits_matches_every_filter() {
+        let s = sel(&["nine_spring"], &["so3", "quat_proj"]);
+        assert!(s.admits(&RunKey::new("nine_spring", "x", "so3", "rk4", "body")));
+        assert!(s.admits(&RunKey::new(
+            "nine_spring",
+            "y",
+            "quat_proj",
+            "rk4",
+            "spatial"
+        )));
+        assert!(!s.admits(&RunKey::new("nine_spring", "x", "rotvec", "rk4", "body")));
+        assert!(!s.admits(&RunKey::new("free_body", "x", "so3", "rk4", "body")));
+    }
+
+    /// The flags and the slug name every filter in the command line's order.
+    #[test]
+    fn flags_and_slug() {
+        let mut s = sel(&["nine_spring"], &["so3"]);
+        s.t_end = Some(2.5);
+        assert_eq!(s.flags(), "--case nine_spring --param so3 --t-end 2.5");
+        assert_eq!(s.slug(), "nine_spring-so3-t2.5");
+        assert_eq!(Selection::everything(Tier::Full).flags(), "");
+        assert!(Selection::everything(Tier::Full).is_everything());
+    }
+}
