@@ -68,7 +68,15 @@ fn files(root: &Path) -> Vec<PathBuf> {
             out.push(p);
         }
     }
-    for dir in ["src", "tests", "benches", "cases", "docs", "references", ".ci"] {
+    for dir in [
+        "src",
+        "tests",
+        "benches",
+        "cases",
+        "docs",
+        "references",
+        ".ci",
+    ] {
         walk(&root.join(dir), dir == ".ci", &mut out);
     }
     out.sort();
@@ -99,8 +107,16 @@ fn no_reference_outside_the_repository() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let files = files(root);
     // The walk found the places it is meant to check (a moved root would pass vacuously).
-    for must in ["src/lib.rs", "cases/README.md", "docs/schemas.md", "README.md"] {
-        assert!(files.contains(&root.join(must)), "{must} not among the checked files");
+    for must in [
+        "src/lib.rs",
+        "cases/README.md",
+        "docs/schemas.md",
+        "README.md",
+    ] {
+        assert!(
+            files.contains(&root.join(must)),
+            "{must} not among the checked files"
+        );
     }
     let mut found = vec![];
     for f in &files {
@@ -110,7 +126,12 @@ fn no_reference_outside_the_repository() {
         for (i, line) in text.lines().enumerate() {
             if let Some(p) = outside_reference(line) {
                 let rel = f.strip_prefix(root).unwrap_or(f);
-                found.push(format!("{}:{}: `{p}`: {}", rel.display(), i + 1, line.trim()));
+                found.push(format!(
+                    "{}:{}: `{p}`: {}",
+                    rel.display(),
+                    i + 1,
+                    line.trim()
+                ));
             }
         }
     }
