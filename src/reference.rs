@@ -1,6 +1,6 @@
-//! Stored references (design.md, "References"), the code every model family shares: one JSON
-//! per scene under `references/<case>/<scene>.json` holding the family's columns at the score
-//! times, its provenance, its accuracy claim and the SHA-256 of the physics it was made from.
+//! Stored references (docs/schemas.md, "Stored references"), the code every model family shares:
+//! one JSON per scene under `references/<case>/<scene>.json` holding the family's columns at the
+//! score times, its provenance, its accuracy claim and the SHA-256 of the physics it was made from.
 //! The schema is the family's (a type implementing [`Stored`], e.g. the rigid body's
 //! `model::rigid_body::reference::Reference`); locating, reading, validating and writing are here.
 //!

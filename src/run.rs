@@ -2,17 +2,17 @@
 //! times, track the chart's conditioning every step, and return the samples, the work
 //! counters and the typed failure, if any. Scoring (metrics) and timing live elsewhere.
 //!
-//! Time grid (design.md, "Determinism"): a fixed-step run takes exactly `n = round(T/h)`
+//! Time grid (deterministic by construction): a fixed-step run takes exactly `n = round(T/h)`
 //! steps of `h = T/n` with `t_k = t0 + k h` computed from the integer `k`, so the same build on
 //! the same input gives bit-identical results. Samples are taken on the scene's sample grid
 //! when the step divides `sample_every`, otherwise on the score grid (every ladder step
-//! divides `score_every`, spec/cases.md), always including `t_end`. Adaptive methods step
-//! freely over the whole span (only their last step is clipped, to land on `t_end`) and
-//! hand out their dense output at the output times, so the output grid does not constrain
-//! their steps or inflate their work counts. A failure ends the run: the samples up to it are kept, the failure records its time.
-//! The loop never allocates per step (the sample vector is reserved up front) and observes
-//! only at output times: the grid, only the final state (timing), or a list of step indices
-//! (`Observe::Steps`: the stability search's `t_h / n` steps, the long-horizon study's
+//! divides `score_every`, cases/README.md, "Conventions"), always including `t_end`. Adaptive
+//! methods step freely over the whole span (only their last step is clipped, to land on `t_end`)
+//! and hand out their dense output at the output times, so the output grid does not constrain their
+//! steps or inflate their work counts. A failure ends the run: the samples up to it are kept, the
+//! failure records its time. The loop never allocates per step (the sample vector is reserved up
+//! front) and observes only at output times: the grid, only the final state (timing), or a list of
+//! step indices (`Observe::Steps`: the stability search's `t_h / n` steps, the long-horizon study's
 //! log-spaced times).
 use crate::integrate::{Adaptive, Failure, FixedStep, Limits, Stats, System};
 use crate::model::rigid_body::Observation;

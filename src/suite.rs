@@ -2,11 +2,12 @@
 //! registered variants x ladder points into jobs, run them in parallel, score them against the
 //! stored references, fit observed orders, and write `summary.json` with the series files.
 //!
-//! Timing (design.md, issue 3): results come from a parallel pass (`--jobs`) that observes and
-//! scores; wall times from a second, single-threaded pass that re-runs each variant without
-//! observation: the min and median of 3 repeats when one run takes under 1 s, else the single
-//! run. The computation is deterministic, so the repeats re-run the identical work.
-//! Records are sorted in a fixed order so that the summary does not depend on `--jobs`.
+//! Timing (wall time is reported, never gated: it is not deterministic): results come from a
+//! parallel pass (`--jobs`) that observes and scores; wall times from a second, single-threaded
+//! pass that re-runs each variant without observation: the min and median of 3 repeats when one run
+//! takes under 1 s, else the single run. The computation is deterministic, so the repeats re-run
+//! the identical work. Records are sorted in a fixed order so that the summary does not depend on
+//! `--jobs`.
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::path::PathBuf;

@@ -1,7 +1,7 @@
-//! `summary.json` (design.md, "Files", contract): one record per run with its metrics, work
-//! counters and timing, the order fits, and the environment that produced them; plus the
-//! per-run series files. Written atomically. Also the build/environment facts (`Env`) and a
-//! UTC timestamp without a date library.
+//! `summary.json` (docs/schemas.md, "summary.json"; its fields are a contract): one record per run
+//! with its metrics, work counters and timing, the order fits, and the environment that produced
+//! them; plus the per-run series files. Written atomically. Also the build/environment facts
+//! (`Env`) and a UTC timestamp without a date library.
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -28,7 +28,7 @@ pub struct Wall {
 /// Which run a record is about, up to its ladder point: the case, the scene and the names of
 /// the variant on the family's three axes. The one key type of every record (runs, order fits,
 /// gate rows); `#[serde(flatten)]` keeps its five fields at the top level of each JSON object,
-/// as design.md's schema has them.
+/// as docs/schemas.md documents them.
 #[derive(Debug, Clone, Default, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub struct RunKey {
     pub case: String,
@@ -342,7 +342,7 @@ pub fn format_utc(secs: u64) -> String {
     )
 }
 
-/// A per-run time series at the score times (design.md, "Files"). JSON has no NaN or
+/// A per-run time series at the score times (docs/schemas.md, "Series files"). JSON has no NaN or
 /// infinity: serde_json writes a non-finite value (an overflowed energy, say) as `null`, and
 /// the lists read `null` back as NaN, so that every series file written reads back (found by
 /// tests/fuzz.rs).

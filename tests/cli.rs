@@ -1,5 +1,5 @@
-//! The command line against bad input and failing runs (issue 2, item 7; design.md exit
-//! codes): bad case files and missing or stale references exit 2 with an error naming the
+//! The command line against bad input and failing runs (exit codes: docs/schemas.md, "Exit
+//! codes"): bad case files and missing or stale references exit 2 with an error naming the
 //! file and the key and write nothing; a diverging run and a run past its work limit are
 //! recorded as typed failures while the other runs complete; `reference --check` passes.
 mod common;

@@ -1,4 +1,4 @@
-//! Observed orders of convergence (issue 2, item 2): every fixed-step integrator, every
+//! Observed orders of convergence: every fixed-step integrator, every
 //! parameterization and both formulations, on `nine_spring/two_angles` and `free_body/gni`,
 //! fitted over the ladder points between 100x the reference's accuracy claim and 1e-2.
 mod common;

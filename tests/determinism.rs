@@ -1,4 +1,4 @@
-//! Determinism (design.md, "Determinism"; issue 4): the same build on the same input gives
+//! Determinism: the same build on the same input gives
 //! bit-identical results, whatever the number of parallel jobs. `mbdbench run --quick` on a
 //! representative slice (nine_spring and gimbal_lock; additive, projected, Euler and
 //! Lie-group charts; explicit, adaptive, implicit and geometric integrators; both

@@ -1,5 +1,6 @@
 //! The real quick tier (catalogue and stability study) passes the quick gates and the
-//! committed baseline (issue 3, item 2; issue 4, item 1), and the gate command's exit codes:
+//! committed baseline (so CI fails on a crossed threshold or a regression), and the gate
+//! command's exit codes:
 //! 0 on the real quick tier, 2 on a truncated summary.
 mod common;
 

@@ -1,4 +1,4 @@
-//! Gimbal lock, measured (issue 2, item 4): the Euler charts lose accuracy or need much more
+//! Gimbal lock, measured: the Euler charts lose accuracy or need much more
 //! work near their singular sets while quaternion and Lie-group charts do not care, the
 //! minimum conditioning is recorded for every run, the control scene is integrated to
 //! round-off, and a chart that starts singular fails at t = 0 without integrating.

@@ -1,4 +1,4 @@
-//! Bounded behaviour on hostile input and faults (issue 10), through the command line: a closed
+//! Bounded behaviour on hostile input and faults, through the command line: a closed
 //! stdout (EPIPE) never panics and never changes the exit status or the files written; HTML in
 //! a case or scene name is inert in `summary.md` as in `index.html`; summaries with duplicate
 //! runs, impossible statuses or negative errors are unusable input naming the record.

@@ -1,4 +1,4 @@
-//! Output folders after interruptions (issue 10): a rerun killed (SIGKILL) at any point leaves
+//! Output folders after interruptions: a rerun killed (SIGKILL) at any point leaves
 //! the folder holding either the old complete run or the new complete run, never a mix, with
 //! the user's own files untouched; SIGINT removes the staging folder at once; a folder changed
 //! after the suite wrote it is refused by its readers. The kill points are deterministic

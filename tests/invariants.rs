@@ -1,4 +1,4 @@
-//! Invariants (issue 2, item 3): simo_wong conserves energy to round-off with springs and
+//! Invariants: simo_wong conserves energy to round-off with springs and
 //! gravity; splitting and lgvi have no secular energy error over 10^6 steps; the projected
 //! charts keep their constraint to round-off while the unprojected ones report their drift.
 mod common;

@@ -1,6 +1,6 @@
-//! The recommendation (`mbdbench advise`, issue 11): from a summary, per case and target
-//! error, the cheapest variant (parameterization x integrator x formulation) that reaches the
-//! target on every non-control scene of the case, its runner-up, and what to avoid and why.
+//! The recommendation (`mbdbench advise`; README.md, "Commands"): from a summary, per case and
+//! target error, the cheapest variant (parameterization x integrator x formulation) that reaches
+//! the target on every non-control scene of the case, its runner-up, and what to avoid and why.
 //!
 //! How it is computed (`rank.rs`), for a case with primary metric `m` and target `e`:
 //! - per scene, a variant's cost at `e` is the work of its cheapest ladder point (fixed step
@@ -25,13 +25,13 @@
 //! whose energy drift at their finest completed ladder point exceeds the case's
 //! `advise_max_energy_drift` (default 1e-3).
 //!
-//! The JSON (`--json`, schema 1): `{schema, summary, cases: [{case, metric, unit, scenes,
-//! controls, targets: [{target, winner, runner_up, gap, by_time, note}], skipped_targets:
-//! [{target, reason}], avoid: [{param, integrator, formulation, scene, reason}],
-//! robustness: [{scene, param, integrator, formulation, stable, accurate, limited_by}]}]}`
-//! (`stable`, `accurate`: `{dt}` or `{tol}` or null) where a
-//! pick is `{param, integrator, formulation, settings: {scene: {dt} | {tol}}, cost,
-//! rhs_evals, newton_iters, wall_s}` (`wall_s`: the sum of the chosen runs' median wall
+//! The JSON (`--json`, schema 1; docs/schemas.md, "advise --json"): `{schema, by, cases: [{case,
+//! metric, unit, scenes, controls, targets: [{target, winner, runner_up, gap, by_time, note}],
+//! skipped_targets: [{target, reason}], avoid: [{param, integrator, formulation, scene,
+//! reason}], robustness: [{scene, param, integrator, formulation, stable, accurate,
+//! limited_by}]}]}` (`stable`, `accurate`: `{dt}` or `{tol}` or null) where a pick is
+//! `{param, integrator, formulation, settings: {scene: {dt} | {tol}}, cost, rhs_evals,
+//! newton_iters, wall_s}` (`wall_s`: the sum of the chosen runs' median wall
 //! times, null when a run was not timed). Absent winners are null.
 //!
 //! Where it fails: a summary of a filtered run advises on the scenes it holds (the advice

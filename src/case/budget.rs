@@ -52,7 +52,7 @@ pub fn over_sample_budget(n_score: u64, samples_per_score: u64) -> Option<String
 mod tests {
     use super::*;
 
-    /// A full sample budget of the rigid body's observations fits in 200 MB (the bound
+    /// A full sample budget of the rigid body's observations fits in 200 MB (the bound
     /// on a run's peak memory), so the budget is what bounds memory.
     #[test]
     fn sample_budget_fits_in_200_mb() {

@@ -1,4 +1,4 @@
-//! `[[gates]]` of a case file (design.md, "Command line": `mbdbench gate`): a metric, one
+//! `[[gates]]` of a case file (cases/README.md, "`[[gates]]`"; `mbdbench gate`): a metric, one
 //! bound (`max` or `min`), a `where` selecting records by scene, variant names and ladder
 //! value, whether the quick tier evaluates it, and the baseline it was set from. Loading only
 //! checks their shape (names, finite bounds, scenes that exist, not both `dt` and `tol`); the

@@ -1,10 +1,9 @@
-//! The physics hash of a scene (design.md, "Case file"): `inputs_sha256` is the hex SHA-256 of
-//! the canonical JSON (object keys sorted at every level, shortest round-trip floats, `-0.0`
-//! written as `0.0`) of the case name, its `model`, the family's physics of the scene (for a
-//! rigid body: the body with the scene's effective inertia, the springs and the initial state
-//! as given), `t_end` and `score_every`. Ladders, gates, the title, `sample_every` and scene
-//! keys outside the physics are not part of it, so editing them does not make a stored
-//! reference stale.
+//! The physics hash of a scene (cases/README.md, "Physics hash"): `inputs_sha256` is the hex
+//! SHA-256 of the canonical JSON (object keys sorted at every level, shortest round-trip floats,
+//! `-0.0` written as `0.0`) of the case name, its `model`, the family's physics of the scene (for a
+//! rigid body: the body with the scene's effective inertia, the springs and the initial state as
+//! given), `t_end` and `score_every`. Ladders, gates, the title, `sample_every` and scene keys
+//! outside the physics are not part of it, so editing them does not make a stored reference stale.
 use serde_json::Value;
 use sha2::{Digest, Sha256};
 

@@ -1,4 +1,4 @@
-//! Step ladders (design.md, "Case file": `[ladders]`, a scene's override, the `quick` tier):
+//! Step ladders (cases/README.md, "`[ladders]`": a scene's override, the `quick` tier):
 //! fixed steps per method order class and tolerances for adaptive methods, each fixed step
 //! resolved against its scene by the divides rule of the case-file conventions
 //! (`n = round(T/h)`, `|n h - T| <= 1e-9 T`, `1 <= n <= 9e15`; the run then takes `n` steps of
@@ -87,8 +87,8 @@ impl Ladder {
 }
 
 /// The number of steps `n = round(span / h)` when `h` divides `span` by the rule of
-/// `spec/cases.md` (`|n h - span| <= 1e-9 span`, `n >= 1`); None otherwise, and for a
-/// non-finite or non-positive argument.
+/// cases/README.md, "Conventions" (`|n h - span| <= 1e-9 span`, `n >= 1`); None otherwise, and for
+/// a non-finite or non-positive argument.
 pub fn steps_dividing(span: f64, h: f64) -> Option<u64> {
     if !(span.is_finite() && h.is_finite() && span > 0.0 && h > 0.0) {
         return None;

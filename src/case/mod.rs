@@ -1,7 +1,7 @@
-//! Case files (`cases/*.toml`, design.md "Case file") to typed, validated structs: the part
-//! every model family shares, and the dispatch on `model = "..."` to the family that parses
-//! the whole file (`problem::Family::load`), so that unknown keys and key paths in errors
-//! work for every family.
+//! Case files (`cases/*.toml`, cases/README.md "Case-file keys") to typed, validated structs: the
+//! part every model family shares, and the dispatch on `model = "..."` to the family that parses
+//! the whole file (`problem::Family::load`), so that unknown keys and key paths in errors work for
+//! every family.
 //!
 //! A file is read in two passes. First serde, with `deny_unknown_fields` everywhere, turns
 //! the TOML into the family's raw structs (declared with [`case_schema!`], which adds the
@@ -104,9 +104,11 @@ impl std::error::Error for CaseError {}
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ReferenceKind {
-    /// Integrated and stored under `references/` (design.md "References").
+    /// Integrated and stored under `references/` (cases/README.md, "References and how they are
+    /// checked").
     Numerical,
-    /// A closed-form solution computed at scoring time.
+    /// A closed-form solution, evaluated at the score times by `mbdbench reference` and stored
+    /// under `references/` like a numerical one.
     Exact,
 }
 
@@ -197,7 +199,7 @@ pub struct Case {
     pub physics: Physics,
 }
 
-/// `[stability]` (issue 4, `mbdbench stability`).
+/// `[stability]` (`mbdbench stability`; cases/README.md, "`[stability]`").
 #[derive(Debug, Clone, PartialEq)]
 pub struct StabilitySpec {
     /// The horizon `t_h` in periods of the scene's fastest linearised mode

@@ -1,7 +1,7 @@
 //! The raw (serde) shape of a case file: `[stability]`, the keys every case file and every
 //! scene has ([`RawShared`], [`RawGrid`]), and the `case_schema!` macro with which a family
-//! declares its own case file around them (design.md, "Case file"). Validation of the values
-//! is in `mod.rs` (`Ctx`); this file holds only what the TOML must look like, with
+//! declares its own case file around them (cases/README.md, "Case-file keys"). Validation of the
+//! values is in `mod.rs` (`Ctx`); this file holds only what the TOML must look like, with
 //! `deny_unknown_fields` everywhere so that a misspelt key is an error naming it.
 use serde::Deserialize;
 
@@ -49,9 +49,10 @@ pub struct RawGrid {
 }
 
 /// Declares a family's raw (serde) case file: the struct of the whole file (the shared keys
-/// of design.md's case file plus the family's own, `deny_unknown_fields`), the struct of one
-/// `[[scene]]` likewise, plain structs of the family's own keys, and `split`, which separates
-/// the shared keys ([`RawShared`], [`RawGrid`]) from the family's.
+/// of every case file (cases/README.md, "Shared keys") plus the family's own,
+/// `deny_unknown_fields`), the struct of one `[[scene]]` likewise, plain structs of the family's
+/// own keys, and `split`, which separates the shared keys ([`RawShared`], [`RawGrid`]) from the
+/// family's.
 ///
 /// ```ignore
 /// mbdbench::case_schema! {

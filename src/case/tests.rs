@@ -35,7 +35,7 @@ fn error_at(text: &str, key: &str) -> CaseError {
     e
 }
 
-/// Energy of spec/cases.md sec. 1 from the parsed data:
+/// Energy of `nine_spring` (cases/README.md, "Equations solved") from the parsed data:
 /// `m|v|^2/2 + omega.J.omega/2 + sum k (l - L0)^2/2 + m g0 x_z`.
 fn energy0(case: &Case, scene: &Scene) -> f64 {
     let (case, scene) = (rc(case), rs(scene));
@@ -50,7 +50,7 @@ fn energy0(case: &Case, scene: &Scene) -> f64 {
     e
 }
 
-// Every embedded catalogue file loads, with the structure spec/cases.md prescribes.
+// Every embedded catalogue file loads, with the structure cases/README.md describes.
 #[test]
 fn embedded_files_load() {
     let cases = embedded().unwrap();
@@ -110,7 +110,7 @@ fn embedded_files_load() {
     assert_eq!(h.body.gravity, Some(9.81));
 }
 
-// E0 of nine_spring's scenes equals spec/cases.md's printed values to their last digit.
+// E0 of nine_spring's scenes equals the values cases/README.md prints, to their last digit.
 #[test]
 fn nine_spring_initial_energies_match_the_spec() {
     let c = load_str(LABEL, NINE).unwrap();
@@ -186,7 +186,7 @@ fn ladders_and_step_counts() {
     assert_eq!(OrderClass::of_order(1), Some(OrderClass::Order1));
 }
 
-// The divides rule of spec/cases.md: n = round(T/h), |n h - T| <= 1e-9 T.
+// The divides rule (cases/README.md, "Conventions"): n = round(T/h), |n h - T| <= 1e-9 T.
 #[test]
 fn steps_dividing_rule() {
     assert_eq!(steps_dividing(0.1, 1.0e-2), Some(10));

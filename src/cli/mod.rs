@@ -1,8 +1,8 @@
-//! The command line (design.md, "Command line", contract): `list` (`list.rs`), `run`,
-//! `stability`, `trajectory` (`trajectory.rs`), `gate`, `report`, `advise`, `reference`; no
-//! subcommand runs the whole catalogue, its report and the recommendation (the main job). Exit status: 0
-//! success, 1 a run or check failed, 2 bad input or usage. Every command takes `--cases DIR`
-//! (default: the embedded copy of the source tree's `cases/`) and `--references DIR`.
+//! The command line (README.md, "Commands"; its names and exit codes are a contract): `list`
+//! (`list.rs`), `run`, `stability`, `trajectory` (`trajectory.rs`), `gate`, `report`, `advise`,
+//! `reference`; no subcommand runs the whole catalogue, its report and the recommendation (the main
+//! job). Exit status: 0 success, 1 a run or check failed, 2 bad input or usage. Every command takes
+//! `--cases DIR` (default: the embedded copy of the source tree's `cases/`) and `--references DIR`.
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
@@ -258,7 +258,7 @@ use crate::problem::{self, Entry, Family, Stepping, Want};
 use crate::reference;
 use crate::suite::{self, RunOptions, VariantFilter};
 
-/// Exit codes (design.md): success, a run or check failed, bad input or usage.
+/// Exit codes (docs/schemas.md, "Exit codes"): success, a run or check failed, bad input or usage.
 pub const EXIT_OK: i32 = 0;
 pub const EXIT_FAILED: i32 = 1;
 pub const EXIT_BAD_INPUT: i32 = 2;

@@ -1,6 +1,6 @@
 //! `mbdbench trajectory`: one run of one variant at one step or tolerance, its samples
-//! written as named columns to one JSON file (design.md, "Files"); a typed failure keeps the
-//! samples up to it and exits 1, bad input exits 2 and writes nothing.
+//! written as named columns to one JSON file (docs/schemas.md, "Trajectory files"); a typed failure
+//! keeps the samples up to it and exits 1, bad input exits 2 and writes nothing.
 use super::*;
 
 pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
@@ -76,7 +76,7 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
     }
     if !v.info.adaptive && crate::run::divides(p.score_every(), value).is_none() {
         return Err(format!(
-            "--dt {value}: does not divide score_every = {} (spec/cases.md rule)",
+            "--dt {value}: does not divide score_every = {} (cases/README.md, \"Conventions\")",
             p.score_every()
         ));
     }

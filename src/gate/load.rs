@@ -1,9 +1,9 @@
 //! The gate's input files: `summary.json`, the `stability.json` beside it and a baseline, all
-//! in the summary's schema (design.md, "Files"). A file that is missing, not JSON, truncated
-//! (the parser reaches its end inside a value), not in the schema or of another `schema`
-//! version, or one that fails `Summary::check` (a run twice, a failed run without its failure,
-//! a negative error) is unusable input: a `GateError` naming the file and what is wrong with
-//! it, never a failing gate row.
+//! in the summary's schema (docs/schemas.md, "summary.json"). A file that is missing, not JSON,
+//! truncated (the parser reaches its end inside a value), not in the schema or of another `schema`
+//! version, or one that fails `Summary::check` (a run twice, a failed run without its failure, a
+//! negative error) is unusable input: a `GateError` naming the file and what is wrong with it,
+//! never a failing gate row.
 use std::path::Path;
 
 use super::GateError;

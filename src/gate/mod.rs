@@ -1,8 +1,8 @@
-//! The gate (design.md, "Command line": `mbdbench gate`): every case's `[[gates]]` threshold
-//! evaluated against a summary (and the `stability.json` beside it), plus the comparison with
-//! an earlier summary (`regression`), printed as a table with an exit code (`table`). The
-//! input files are read by `load`, the gates checked against what exists by `validate`; this
-//! file expands and judges them.
+//! The gate (README.md, "The gate"; the keys in cases/README.md, "`[[gates]]`"): every case's
+//! `[[gates]]` threshold evaluated against a summary (and the `stability.json` beside it), plus the
+//! comparison with an earlier summary (`regression`), printed as a table with an exit code
+//! (`table`). The input files are read by `load`, the gates checked against what exists by
+//! `validate`; this file expands and judges them.
 //!
 //! A gate names a metric, a bound (`max`: the value must be `<=` it; `min`: `>=`) and a
 //! `where` whose lists select scenes, parameterizations, integrators, formulations and ladder

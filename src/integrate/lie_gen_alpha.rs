@@ -280,7 +280,7 @@ mod tests {
         }
     }
 
-    /// The heavy top (spec/cases.md sec. 4) runs 0.2 s at dt = 1e-3; its energy drift is
+    /// The heavy top (cases/README.md, `heavy_top`) runs 0.2 s at dt = 1e-3; its energy drift is
     /// reported and bounded by the method's second-order error.
     #[test]
     fn heavy_top_energy_drift() {

@@ -120,7 +120,7 @@ pub trait System: Send + Sync {
     }
 }
 
-/// Why a run ended early (design.md, "Files": failure kinds).
+/// Why a run ended early (docs/schemas.md, "Failure kinds").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FailureKind {

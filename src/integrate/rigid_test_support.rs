@@ -1,5 +1,5 @@
 //! Test support for the geometric rigid-body integrators (compiled for tests only): the
-//! canonical bodies of spec/cases.md (sec. 1 `nine_spring`, sec. 3 `free_body` gni, sec. 4
+//! canonical bodies of cases/README.md (`nine_spring`, `free_body` gni,
 //! `heavy_top`) and two small ones (a torque-free body with full inertia, a body on three
 //! springs with gravity), an independent reference integrator (classical RK4 in its
 //! Runge-Kutta-Munthe-Kaas form on SO(3) x R^3, Munthe-Kaas 1998: fourth order, so at 1/64 of
@@ -26,7 +26,8 @@ fn state(sys: &Sys, r: &Matrix3<f64>, x: Vector3<f64>, v: Vector3<f64>, w: Vecto
     })
 }
 
-/// spec/cases.md sec. 3, scene `gni`: `J = diag(2, 1, 2/3)`, `J omega = (cos 1.1, 0, sin 1.1)`.
+/// cases/README.md, `free_body`, scene `gni`: `J = diag(2, 1, 2/3)`,
+/// `J omega = (cos 1.1, 0, sin 1.1)`.
 pub(crate) fn gni() -> (Sys, St) {
     let j = Matrix3::from_diagonal(&Vector3::new(2.0, 1.0, 2.0 / 3.0));
     let body = RigidBody::new(1.0, j, vec![], None, None).unwrap();
@@ -92,7 +93,7 @@ pub(crate) fn three_springs() -> (Sys, St) {
     (sys, s)
 }
 
-/// spec/cases.md sec. 1 `nine_spring`, scene `large`: `R0 = Rx(0) Ry(pi/3) Rz(-pi/2)`.
+/// cases/README.md, `nine_spring`, scene `large`: `R0 = Rx(0) Ry(pi/3) Rz(-pi/2)`.
 pub(crate) fn nine_spring() -> (Sys, St) {
     let bs = [
         ([1.0, 0.0, 0.0], 0),
@@ -133,7 +134,7 @@ pub(crate) fn nine_spring() -> (Sys, St) {
     (sys, s)
 }
 
-/// spec/cases.md sec. 4 `heavy_top`, scene `bruls_cardona`.
+/// cases/README.md, `heavy_top`, scene `bruls_cardona`.
 pub(crate) fn heavy_top() -> (Sys, St) {
     let jc = Matrix3::from_diagonal(&Vector3::new(0.234375, 0.46875, 0.234375));
     let body = RigidBody::new(

@@ -35,7 +35,7 @@
 /// An explicit Runge-Kutta tableau.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tableau {
-    /// Method name (design.md, "Variant names").
+    /// Method name (stable snake_case: it appears in case files, records and bench ids).
     pub name: &'static str,
     /// Classical order.
     pub order: u32,

@@ -164,8 +164,8 @@ pub fn renormalize(q: Quaternion<f64>) -> Quaternion<f64> {
     }
 }
 
-/// The sign-canonical representative of a unit quaternion (`spec/cases.md`): `w > 0`, or, if
-/// `w = 0`, the first non-zero of `x, y, z` positive.
+/// The sign-canonical representative of a unit quaternion (cases/README.md, "Conventions"):
+/// `w > 0`, or, if `w = 0`, the first non-zero of `x, y, z` positive.
 pub fn canonical(q: &UnitQuaternion<f64>) -> UnitQuaternion<f64> {
     let c = [q.w, q.i, q.j, q.k];
     let first = c.iter().copied().find(|v| *v != 0.0).unwrap_or(1.0);
@@ -244,7 +244,7 @@ pub fn geodesic(a: &Matrix3<f64>, b: &Matrix3<f64>) -> f64 {
     geodesic_quat(&quat_from_matrix(a), &quat_from_matrix(b))
 }
 
-/// Active elementary rotations `Rx(a)`, `Ry(a)`, `Rz(a)` (spec/cases.md conventions).
+/// Active elementary rotations `Rx(a)`, `Ry(a)`, `Rz(a)` (cases/README.md, "Conventions").
 pub fn rx(a: f64) -> Matrix3<f64> {
     let (s, c) = a.sin_cos();
     Matrix3::new(1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c)

@@ -1,9 +1,9 @@
-//! Metrics every family shares: what a run is scored on (design.md, "Files": metric names),
-//! the energy drift, the chart diagnostics and the order fit; a family's own metrics (the rigid
-//! body's trajectory errors and momentum drift) live in its folder. One file per metric
-//! family; each declares what it needs (a reference, a conserved quantity, a constrained
-//! chart) and is absent from the record where that does not apply (never 0), or `null` with
-//! a reason where it applies but cannot be computed (e.g. the run failed before `t_end`).
+//! Metrics every family shares: what a run is scored on (docs/schemas.md, "summary.json"; metric
+//! names in cases/README.md), the energy drift, the chart diagnostics and the order fit; a family's
+//! own metrics (the rigid body's trajectory errors and momentum drift) live in its folder. One file
+//! per metric family; each declares what it needs (a reference, a conserved quantity, a constrained
+//! chart) and is absent from the record where that does not apply (never 0), or `null` with a
+//! reason where it applies but cannot be computed (e.g. the run failed before `t_end`).
 use std::collections::BTreeMap;
 
 pub mod chart;

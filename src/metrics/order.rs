@@ -1,8 +1,8 @@
-//! Observed order of convergence over a step ladder (design.md, `fits`): the least-squares
-//! slope of `log(error)` against `log(dt)` over the ladder points whose error lies between
-//! `100 x` the reference's accuracy claim (below it the reference, not the method, is
-//! measured) and `1e-2` (above it the method is outside its asymptotic range). Fewer than 3
-//! such points give no order, with the reason.
+//! Observed order of convergence over a step ladder (docs/schemas.md, summary.json `fits`): the
+//! least-squares slope of `log(error)` against `log(dt)` over the ladder points whose error lies
+//! between `100 x` the reference's accuracy claim (below it the reference, not the method, is
+//! measured) and `1e-2` (above it the method is outside its asymptotic range). Fewer than 3 such
+//! points give no order, with the reason.
 use serde::Serialize;
 
 /// A fitted order (or the reason there is none) and the points used.

@@ -1,17 +1,18 @@
 //! The fastest linearised mode of a rigid-body scene: the time scale the stability study
-//! measures its horizon in (issue 4: `t_h` = 20 periods of the fastest mode).
+//! measures its horizon in (`t_h` = `[stability].periods`, 20 in the catalogue, periods of the
+//! fastest mode).
 //!
 //! Two candidates, the larger frequency wins:
 //! - the elastic modes of the force field linearised about the reference configuration
-//!   `x = 0, R = I` (where `nine_spring`'s springs are exactly at rest, spec/cases.md, 1):
-//!   with generalised displacements `q = (dx, dtheta)` (world translation, small world rotation
-//!   `R = exp([dtheta]x)`), the tangent stiffness `K = -d(f, tau)/dq` is taken by central
-//!   differences of `RigidBody::wrench` (step 1e-6: relative error ~1e-10, far below what a
-//!   horizon needs), symmetrised, and the modes solve `K v = w^2 M v`, `M = diag(m I, J)`
-//!   (`J` about the reference point; the translational block only when the body translates),
-//!   via `L^-1 K L^-T` with `M = L L^T` (Cholesky) and a symmetric eigen-decomposition;
-//!   negative eigenvalues (an unstable equilibrium, e.g. an inverted pendulum) carry no period
-//!   and are ignored;
+//!   `x = 0, R = I` (where `nine_spring`'s springs are exactly at rest, cases/README.md,
+//!   `nine_spring`): with generalised displacements `q = (dx, dtheta)` (world translation, small
+//!   world rotation `R = exp([dtheta]x)`), the tangent stiffness `K = -d(f, tau)/dq` is taken by
+//!   central differences of `RigidBody::wrench` (step 1e-6: relative error ~1e-10, far below what a
+//!   horizon needs), symmetrised, and the modes solve `K v = w^2 M v`, `M = diag(m I, J)` (`J`
+//!   about the reference point; the translational block only when the body translates), via
+//!   `L^-1 K L^-T` with `M = L L^T` (Cholesky) and a symmetric eigen-decomposition; negative
+//!   eigenvalues (an unstable equilibrium, e.g. an inverted pendulum) carry no period and are
+//!   ignored;
 //! - the initial body rotation rate `|omega(0)|` (a free or spinning body: one turn is the
 //!   fastest motion a torque-free rigid body has; the heavy top's spin).
 //!

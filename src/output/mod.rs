@@ -1,4 +1,5 @@
-//! Output folders that are never seen half-written (issue 10): every folder writer (`run`,
+//! Output folders that are never seen half-written (a killed writer must not leave a folder
+//! that mixes two runs): every folder writer (`run`,
 //! `stability`, `report`) builds its new output in a staging folder beside the output folder
 //! and makes it the output in one step, so after an interruption at any instant (SIGKILL
 //! included) the folder holds either the old complete output or the new complete one.

@@ -1,5 +1,5 @@
-//! The seam between the suite and the model families (design.md, "Model families and record
-//! axes"). A family (rigid bodies, later the flexible beam, the fiber column, mechanisms) is
+//! The seam between the suite and the model families (README.md, "Adding things": a model
+//! family). A family (rigid bodies, later the flexible beam, the fiber column, mechanisms) is
 //! described once, statically, by a [`Family`] listed in [`FAMILIES`]: its case-file `model`
 //! key, the names and report order of the three record axes (`param`: how rotations are
 //! represented; `formulation`: how the equations of motion are written; `integrator`: how
@@ -143,7 +143,7 @@ pub struct Axes {
     pub formulations: &'static [&'static str],
 }
 
-/// One metric a family reports (design.md, "Files").
+/// One metric a family reports (docs/schemas.md, "summary.json": `metrics`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Metric {
     pub name: &'static str,
@@ -281,7 +281,7 @@ pub trait Problem: Send + Sync {
     fn family(&self) -> &'static Family;
     fn case(&self) -> &str;
     fn scene(&self) -> &str;
-    /// The SHA-256 of the scene's physics (design.md, "Case file").
+    /// The SHA-256 of the scene's physics (cases/README.md, "Physics hash").
     fn inputs_sha256(&self) -> &str;
     /// The case's primary error metric.
     fn primary_metric(&self) -> &str;
@@ -307,8 +307,8 @@ pub trait Problem: Send + Sync {
     fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String>;
     /// Computes the scene's reference (its primary trajectory, the cross-check by a run that
     /// differs in integrator, parameterization and formulation, the accuracy claim) and
-    /// writes it under `root` (design.md, "References"); returns a line saying how it was
-    /// made and what the cross-check found.
+    /// writes it under `root` (cases/README.md, "References and how they are checked"); returns a
+    /// line saying how it was made and what the cross-check found.
     fn make_reference(&self, root: &Path) -> Result<String, String>;
     /// `reference --check`: recomputes the reference and compares it with the one stored
     /// under `root`; whether it lies within the stored accuracy claim, and a line with the

@@ -1,5 +1,5 @@
-//! Axis specifications with explicit tick positions and labels (design.md, "Reports": set the
-//! log-axis key points explicitly; plotters' default drops the end labels).
+//! Axis specifications with explicit tick positions and labels (set the log-axis key
+//! points explicitly: plotters' default drops the end labels).
 //!
 //! Every plot is drawn in a *transformed* linear space: a log axis carries `log10(v)`, so a
 //! decade is one unit and a tick at `k` is labelled `1e{k}`. The range of a log axis is

@@ -1,4 +1,4 @@
-//! `index.html`: one self-contained page (design.md, "Reports"): inline CSS, every plot an
+//! `index.html`: one self-contained page (README.md, "The report"): inline CSS, every plot an
 //! inline `<svg>` element, no `src` or `href` attribute at all (not even in-page anchors), no
 //! script, no network. Each case is a `<section class="case" data-case=...>` whose parts carry
 //! `data-section` names (`narrative`, `work-precision`, `convergence`, `timeseries`,

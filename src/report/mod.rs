@@ -1,4 +1,4 @@
-//! The report (design.md, "Reports"): from a summary, its series files, the case files and
+//! The report (README.md, "The report"): from a summary, its series files, the case files and
 //! optionally the gate's rows, writes `out/index.html` (one self-contained page, every plot an
 //! inline SVG, no external `src`/`href`, no script), `out/summary.md` (the same text and
 //! tables for a CI log or PR comment) and every plot as `out/svg/<case>/[<scene>/]<plot>.svg`.

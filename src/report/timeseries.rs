@@ -1,6 +1,6 @@
 //! Invariants over time, from the per-run series files (values at the scene's `score_every`
-//! times): the relative energy drift `|E(t) - E0| / max(|E0|, energy_scale)` (design.md,
-//! "Files": the same normalisation as `energy_drift_max`) and the chart's own constraint
+//! times): the relative energy drift `|E(t) - E0| / max(|E0|, energy_scale)` (the same
+//! normalisation as `energy_drift_max`, docs/schemas.md) and the chart's own constraint
 //! residual (`||q|^2 - 1|`, `|R^T R - I|`, the dual quaternion's two; none for minimal charts),
 //! both on a log axis against linear time.
 //!

@@ -1,7 +1,7 @@
 //! Euler-angle charts `euler_xyz`, `euler_zyx`, `euler_zxz`: three angles `(a, b, c)` with
 //! `R = Ri(a) Rj(b) Rk(c)`, additive, with the translation additive beside them.
 //!
-//! Sequences (spec/cases.md, "Conventions"): `xyz` is `Rx(a) Ry(b) Rz(c)` and `zyx` is
+//! Sequences (cases/README.md, "Conventions"): `xyz` is `Rx(a) Ry(b) Rz(c)` and `zyx` is
 //! `Rz(a) Ry(b) Rx(c)`, singular where `cos b = 0`; `zxz` is `Rz(a) Rx(b) Rz(c)`, singular
 //! where `sin b = 0`. Conditioning is `|cos b|` (resp. `|sin b|`) of the stored `b`.
 //!

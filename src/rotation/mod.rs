@@ -40,7 +40,7 @@ use crate::math::vector::Vector;
 /// assert_eq!(So3::conditioning(&c1), 1.0);
 /// ```
 pub trait PoseChart: Send + Sync + 'static {
-    /// The variant name (design.md, "Variant names").
+    /// The variant name (stable snake_case: it appears in case files, records and bench ids).
     const NAME: &'static str;
     /// The stored numbers.
     type Coords: Copy + Debug + Send + Sync;
@@ -92,9 +92,9 @@ pub trait PoseChart: Send + Sync + 'static {
     fn is_finite(c: &Self::Coords) -> bool;
 }
 
-/// Newton-Euler formulation (design.md): equations and velocities in the body frame, or the
-/// twist and equations in the world frame (Bongardt & Kirchner, general-coordinates
-/// Newton-Euler).
+/// Newton-Euler formulation (cases/README.md, "Equations solved"): equations and velocities in the
+/// body frame, or the twist and equations in the world frame (Bongardt & Kirchner,
+/// general-coordinates Newton-Euler).
 pub trait Formulation: Send + Sync + 'static {
     const SPATIAL: bool;
     const NAME: &'static str;
@@ -135,9 +135,9 @@ pub use rotvec::RotVec;
 pub use se3_hq::Se3Hq;
 
 /// Invokes `$m!(T)` once for each of the eleven chart types `T` (by their bare names, in the
-/// order of design.md's variant list), so a table of charts is written once: the conformance
-/// suite and the registry use it. The caller brings the names into scope
-/// (`use crate::rotation::*`).
+/// order of the parameterization list in README.md, "What it answers"), so a table of charts is
+/// written once: the conformance suite and the registry use it. The caller brings the names into
+/// scope (`use crate::rotation::*`).
 #[macro_export]
 macro_rules! for_each_chart {
     ($m:ident) => {

@@ -1,4 +1,4 @@
-//! The long-horizon part of the stability study (issue 4): `free_body/gni` at `dt = 1e-2` and
+//! The long-horizon part of the stability study: `free_body/gni` at `dt = 1e-2` and
 //! `heavy_top/bruls_cardona` at `dt = 1e-4` run for `N = 10^6` steps (`10^7` for the few
 //! variants listed in `LONG`; `10^4` in the quick tier), observed at `SAMPLES = 200`
 //! log-spaced step indices, with the growth exponent of the energy and momentum errors fitted

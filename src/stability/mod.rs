@@ -1,7 +1,7 @@
-//! The stability study behind `mbdbench stability` (issue 4): how far each variant can be
+//! The stability study behind `mbdbench stability`: how far each variant can be
 //! pushed before it fails, not only how accurate it is at comfortable steps. Its parts, one
-//! file each, return records in the summary's schema (design.md, "Files") that this module
-//! merges into `stability.json`:
+//! file each, return records in the summary's schema (docs/schemas.md, "stability.json") that this
+//! module merges into `stability.json`:
 //!
 //! - `search`: the largest stable and the largest accurate step (or tolerance) per variant and
 //!   scene over the scene's stability horizon `t_h` (20 periods of its fastest linearised

@@ -1,4 +1,4 @@
-//! The largest stable and the largest accurate step of a variant on a scene (issue 4).
+//! The largest stable and the largest accurate step of a variant on a scene.
 //!
 //! Horizon: `t_h` = `[stability].periods` periods of the scene's fastest linearised mode
 //! (`model::linear_modes`). A fixed-step variant is probed with `n` steps of `dt = t_h / n`

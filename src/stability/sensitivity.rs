@@ -1,6 +1,6 @@
-//! Sensitivity of each scene to its initial state (issue 4): the finite-time growth of a
+//! Sensitivity of each scene to its initial state: the finite-time growth of a
 //! `PERTURBATION` = 1e-9 perturbation, so the report can say over what horizon a trajectory
-//! error is meaningful (spec/cases.md, 1: `nine_spring` amplifies 1e-9 by up to ~600x in 10 s).
+//! error is meaningful (cases/README.md, `nine_spring` amplifies 1e-9 by up to ~600x in 10 s).
 //!
 //! For each scene, the unperturbed run and one run per coordinate of the initial state are
 //! integrated by `dop853` on `so3`/`body` at tolerance `TOL` (1e-12, so the integration error,
@@ -259,10 +259,10 @@ mod tests {
         }
     }
 
-    /// nine_spring is mildly chaotic: spec/cases.md (sec. 1) says a 1e-9 perturbation of the
-    /// initial state grows by up to about 600x within 10 s depending on its direction; the
-    /// worst direction's growth on `large` is within a factor 2 of that (597x measured), and
-    /// both scenes stay far below the 1e7 at which round-off would reach 1e-9.
+    /// nine_spring is mildly chaotic: cases/README.md (`nine_spring`) says a 1e-9 perturbation of
+    /// the initial state grows by up to about 600x within 10 s depending on its direction; the
+    /// worst direction's growth on `large` is within a factor 2 of that (597x measured), and both
+    /// scenes stay far below the 1e7 at which round-off would reach 1e-9.
     #[test]
     fn nine_spring_amplifies_as_the_spec_says() {
         let large = growth(&plan("nine_spring", "large")).unwrap();

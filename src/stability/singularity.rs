@@ -1,16 +1,17 @@
-//! The singularity ladder (issue 4): `gimbal_lock`'s spin generated for approach distances
+//! The singularity ladder: `gimbal_lock`'s spin generated for approach distances
 //! `d = 1e-1 ... 1e-12` (scenes `ladder_d1e-<k>`): the spherical body `J = 2 I` spinning at
-//! `w = Omega (sin d, cos d, 0)`, `Omega = 1 rad/s`, from `R0 = I` (spec/cases.md, 2), whose
-//! body z axis passes within `sin d` of world x at `t = pi/2`: the `xyz` chart's singular set
-//! (`zyx`'s likewise, through its own axes). The exact solution is `R(t) = exp(t [w]x)`, so each
-//! run is scored on the spot: the maximum geodesic rotation error over the score grid, the RHS
-//! evaluations and the chart's minimum conditioning along the run, against `d`.
+//! `w = Omega (sin d, cos d, 0)`, `Omega = 1 rad/s`, from `R0 = I` (cases/README.md,
+//! `gimbal_lock`), whose body z axis passes within `sin d` of world x at `t = pi/2`: the `xyz`
+//! chart's singular set (`zyx`'s likewise, through its own axes). The exact solution is
+//! `R(t) = exp(t [w]x)`, so each run is scored on the spot: the maximum geodesic rotation error
+//! over the score grid, the RHS evaluations and the chart's minimum conditioning along the run,
+//! against `d`.
 //!
-//! What it shows (spec/cases.md, 2): a chart's error and cost grow as `d` shrinks towards the
-//! distance one step travels, `Omega h`; below it a fixed step jumps over the singular set and
-//! may land accurately again (the regime change is at `d ~ Omega h`), and a loose-tolerance
-//! adaptive method may step over the spike unnoticed (its error does not grow, its work does
-//! not either). Quaternion, matrix, Lie-group and re-charted variants do not depend on `d`.
+//! What it shows (cases/README.md, `gimbal_lock`): a chart's error and cost grow as `d` shrinks
+//! towards the distance one step travels, `Omega h`; below it a fixed step jumps over the singular
+//! set and may land accurately again (the regime change is at `d ~ Omega h`), and a loose-tolerance
+//! adaptive method may step over the spike unnoticed (its error does not grow, its work does not
+//! either). Quaternion, matrix, Lie-group and re-charted variants do not depend on `d`.
 //!
 //! The runs: `rk4` at `dt = 1e-2` and `1e-3` and `dop853` at tolerances `1e-4` and `1e-8`, every
 //! chart of the body formulation (the quick tier: three distances, the Euler charts, `quat_proj`

@@ -1,4 +1,4 @@
-//! The stiffness ladder (issue 4): `nine_spring/two_angles` with every spring stiffness
+//! The stiffness ladder: `nine_spring/two_angles` with every spring stiffness
 //! multiplied by `10^0 ... 10^4` (generated scenes `two_angles_k1e<j>`), the largest stable and
 //! accurate step of each variant against the stiffness factor, and the log-log slopes.
 //!

@@ -1,4 +1,4 @@
-//! The corpus layer (issue 10): a fixed, seeded corpus of about 2,000 mutated inputs run
+//! The corpus layer: a fixed, seeded corpus of about 2,000 mutated inputs run
 //! through the `mbdbench` binary under an address-space cap of 1.5 GiB (`ulimit -v` in the
 //! harness, a guard against crashes, not a memory budget). Half are case files (`list`, and
 //! for some a one-variant `run --quick`), three tenths summaries with their series and

@@ -1,4 +1,4 @@
-//! Hostile input (issue 4): property-based fuzzing of the case parser, of the run loop and of
+//! Hostile input: property-based fuzzing of the case parser, of the run loop and of
 //! the command line. Every input either runs or gives a typed error within its work limit;
 //! nothing panics, hangs, or leaves a half-written file that looks complete.
 //!

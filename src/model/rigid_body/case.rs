@@ -1,5 +1,5 @@
-//! The rigid-body case schema (design.md, "Case file"; the case-file specification's
-//! sections 1-4): `[body]` (mass, inertia about the centre of mass, gravity, a fixed pivot),
+//! The rigid-body case schema (cases/README.md, "Rigid-body keys"; the physics of each case in
+//! its section there): `[body]` (mass, inertia about the centre of mass, gravity, a fixed pivot),
 //! `[[spring]]` (linear springs to fixed anchors), `nonphysical_inertia`, and each scene's
 //! initial state (`euler_xyz` with `R0 = Rx(a) Ry(b) Rz(c)`, position, velocity, one of
 //! `omega`, `omega_world` (`omega = R0^T w`), `angular_momentum_body` (`omega = J^-1 L`, `J`

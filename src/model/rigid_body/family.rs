@@ -1,7 +1,7 @@
 //! The rigid-body family's line in the family table (`problem::FAMILIES`): its case-file key
 //! `rigid_body`, the three record axes in report order (the 11 pose charts, the integrators
 //! of the rigid core, the `body` / `spatial` Newton-Euler formulations), its metrics
-//! (design.md, "Files") and trajectory columns, and the registered variants of
+//! (cases/README.md, "Rigid-body metrics") and trajectory columns, and the registered variants of
 //! `registry.rs` as the family-independent [`Variant`] the suite dispatches through.
 use crate::case::{Case, CaseError, Scene};
 use crate::problem::{Axes, Column, Family, Metric, Problem, Variant};
@@ -25,7 +25,7 @@ pub static FAMILY: Family = Family {
     figures: &super::figures::FIGURES,
 };
 
-/// The metrics of rigid-body cases (design.md, "Files").
+/// The metrics of rigid-body cases (cases/README.md, "Rigid-body metrics").
 pub const METRICS: &[Metric] = &[
     Metric {
         name: "position_error_max",
@@ -74,7 +74,7 @@ pub const METRICS: &[Metric] = &[
     },
 ];
 
-/// The trajectory and reference columns after `t` (design.md, "Files").
+/// The trajectory and reference columns after `t` (docs/schemas.md, "Trajectory files").
 pub const COLUMNS: &[Column] = &[
     Column {
         name: "position",

@@ -3,7 +3,7 @@
 //! `RigidSystem<C, F>`, its Newton-Euler equations in a chosen pose chart `C` and
 //! formulation `F`, as a `System` for the integrators.
 //!
-//! Equations (spec/cases.md sec. 1 and 4; Bongardt & Kirchner for the two formulations):
+//! Equations (cases/README.md, "Equations solved"; Bongardt & Kirchner for the two formulations):
 //! - body:    `xddot = f/m`, `J omega' = R^T tau - omega x J omega`, `R' = R [omega]x`,
 //!   velocity state `(v, omega)` = (world velocity of the centre of mass, body angular velocity);
 //! - spatial: `w' = J_w^{-1} (tau - w x J_w w)`, `J_w = R J R^T`, `v_s' = xddot - w' x x - w x xdot`,

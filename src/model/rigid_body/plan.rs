@@ -1,7 +1,8 @@
 //! The rigid body's plan of one scene: the compiled body, the initial state, the grid, the
 //! work limits, the ladders and the physics hash, as `RigidProblem`, the stability study and
-//! the benches use them (design.md, "Case files"; the shared parts come from `crate::plan`).
-//! Fails with a `CaseError` naming the scene when the scene is not a rigid-body scene.
+//! the benches use them (cases/README.md, "Case-file keys"; the shared parts come from
+//! `crate::plan`). Fails with a `CaseError` naming the scene when the scene is not a rigid-body
+//! scene.
 use crate::case::{self, Case, Scene};
 use crate::plan::{ladders, select};
 use crate::run::Grid;

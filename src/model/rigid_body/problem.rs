@@ -1,9 +1,9 @@
 //! One compiled rigid-body scene behind the `Problem` seam: the scene plan (body, initial
 //! state, grid, limits, ladders, physics hash), its stored reference once attached, and the
 //! dispatch of a run to the registry's monomorphised run function of the variant. Scoring
-//! (`score.rs` beside this file) and the trajectory's named columns (design.md, "Files": position, quaternion,
-//! velocity, body angular velocity, energy at the sample times) are made here, so the suite
-//! sees only names and numbers.
+//! (`score.rs` beside this file) and the trajectory's named columns (docs/schemas.md, "Trajectory
+//! files": position, quaternion, velocity, body angular velocity, energy at the sample times) are
+//! made here, so the suite sees only names and numbers.
 //!
 //! The timing pass runs the same function with `Observe::Final` on a setup prepared once, so
 //! a timed repeat does exactly the work of the scored run minus its observations.

@@ -1,9 +1,9 @@
-//! The rigid body's stored reference (design.md, "References"): position, unit quaternion,
-//! velocity, body angular velocity and energy at the score times, with its provenance (how it
-//! was made, the cross-check by a run that differs in integrator, parameterization and
+//! The rigid body's stored reference (docs/schemas.md, "Stored references"): position, unit
+//! quaternion, velocity, body angular velocity and energy at the score times, with its provenance
+//! (how it was made, the cross-check by a run that differs in integrator, parameterization and
 //! formulation), its accuracy claim per quantity and the physics hash. Reading, staleness and
-//! atomic writing are the shared code of `crate::reference`; this file is the schema, its
-//! column check and the claim an order fit or baseline comparison uses per metric.
+//! atomic writing are the shared code of `crate::reference`; this file is the schema, its column
+//! check and the claim an order fit or baseline comparison uses per metric.
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 

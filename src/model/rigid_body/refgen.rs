@@ -1,4 +1,5 @@
-//! Making and checking references (`mbdbench reference`; design.md, "References").
+//! Making and checking references (`mbdbench reference`; cases/README.md, "References and how
+//! they are checked").
 //!
 //! - Numerical references (`reference = "numerical"`: nine_spring, heavy_top): `gauss6` on
 //!   `so3` in the body formulation at a small step, cross-checked by `dop853` at a tight

@@ -1,7 +1,7 @@
 //! The registry: the explicit table of valid (parameterization, integrator, formulation)
 //! variants of the rigid-body model, each pointing to a monomorphised run function, and the
 //! reasons every other combination is `n/a`. The table is the documentation of what is
-//! compared (design.md, "Core ideas").
+//! compared (`mbdbench list` prints it).
 //!
 //! Rules: the generic integrators (`euler`, `rk4`, `dopri5`, `dop853`, `implicit_midpoint`,
 //! `gauss6`) run on every chart in both formulations (classical RK on additive charts, RKMK on

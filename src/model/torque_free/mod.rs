@@ -1,6 +1,6 @@
 //! Exact motion of the torque-free rigid body (Euler-Poinsot), the reference of
-//! `free_body/*` and `gimbal_lock/tumble` (spec/cases.md sec. 2-3), and of the constant-
-//! angular-velocity spins `gimbal_lock/spin_*` ([`spin_exact`]).
+//! `free_body/*` and `gimbal_lock/tumble` (cases/README.md, `gimbal_lock` and `free_body`), and of
+//! the constant-angular-velocity spins `gimbal_lock/spin_*` ([`spin_exact`]).
 //!
 //! Equations: `J omega' = J omega x omega`, `R' = R [omega]x` (`R` body -> world, `omega`
 //! body frame, `J = diag` in the body frame). Conserved: `T = omega.J.omega / 2`, the body

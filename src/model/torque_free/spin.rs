@@ -1,5 +1,5 @@
 //! The exact motion of a body spinning at a constant world angular velocity `w` (a spherical
-//! body, `gimbal_lock/spin_*`, spec/cases.md sec. 2): `R(t) = exp(t [w]x) R0`,
+//! body, `gimbal_lock/spin_*`, cases/README.md, `gimbal_lock`): `R(t) = exp(t [w]x) R0`,
 //! `omega_body = R0^T w`, constant. Exact up to the rounding of `exp` and of one quaternion
 //! product; the quaternion is sign-canonical. Where it fails: it does not check its input (a
 //! non-finite `w` or a non-rotation `R0` gives a meaningless result).

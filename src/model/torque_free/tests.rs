@@ -321,7 +321,7 @@ fn against_mpmath() {
     }
 }
 
-/// `R(t) = R0 R_I(t)` and `omega` does not depend on `R0` (spec/cases.md sec. 2).
+/// `R(t) = R0 R_I(t)` and `omega` does not depend on `R0` (cases/README.md, `gimbal_lock`).
 #[test]
 fn initial_attitude_factors_out() {
     let (j, w, r0) = tumble();
@@ -367,7 +367,8 @@ fn tumble_against_gbs() {
         "{dr5:e} {dw5:e}"
     );
     // [5, 20]: GBS's own drift (exact vs mpmath stays ~1e-13 here); measured 1.9e-12 rad,
-    // 2.9e-11 rad/s. Bounded by the limit spec/cases.md states for double precision.
+    // 2.9e-11 rad/s. Bounded by the limit cases/README.md (`gimbal_lock`, `tumble`) states for
+    // double precision.
     assert!(dr20 <= 3e-11 && dw20 <= 1e-9, "{dr20:e} {dw20:e}");
 }
 

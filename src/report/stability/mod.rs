@@ -1,7 +1,7 @@
-//! The stability part of a case's section (issue 4), from `stability.json` (the summary's
-//! schema, written by `mbdbench stability` beside `summary.json`) and its long-horizon series
-//! files. A record is read by the metrics it carries, so later parts of the study need no
-//! change here to be shown:
+//! The stability part of a case's section (README.md, "The stability study"), from `stability.json`
+//! (the summary's schema, written by `mbdbench stability` beside `summary.json`) and its
+//! long-horizon series files. A record is read by the metrics it carries, so later parts of the
+//! study need no change here to be shown:
 //!
 //! - step search (`largest_stable_dt` or `largest_stable_tol`): one table per scene (the case
 //!   file's scenes first, then generated ones such as the stiffness ladder's `two_angles_k1e2`,
@@ -106,7 +106,7 @@ impl StabilitySection {
     }
 }
 
-/// The explicit-Euler sentence (issue 4).
+/// The explicit-Euler sentence: why its stable step is so small.
 pub const EULER_NOTE: &str = "Explicit Euler has no stability interval on the imaginary axis \
     (|1 + i w h| > 1 for every h > 0), so on these undamped oscillations it always grows: its \
     stable step comes from the energy growth bound alone (relative energy error < 1 over t_h), \
