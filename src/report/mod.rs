@@ -1,22 +1,26 @@
-//! The report (design.md, "Reports"): from a summary, its series files, the case files and
-//! optionally the gate's rows, writes `out/index.html` (one self-contained page, every plot an
-//! inline SVG, no external `src`/`href`, no script), `out/summary.md` (the same text and
-//! tables for a CI log or PR comment) and every plot as `out/svg/<case>/[<scene>/]<plot>.svg`.
+//! The report: from a summary, its series files, the case files and optionally the gate's
+//! rows, writes `out/index.html` (one self-contained page, every plot an inline SVG with an
+//! HTML legend, no external `src`/`href`, one small inline script: `script`), `out/summary.md`
+//! (the same text and tables for a CI log or PR comment) and every plot with its own legend as
+//! `out/svg/<case>/[<scene>/]<plot>.svg`.
 //!
 //! The figures are the case's family's (`problem::figures`: which selections of variants each
 //! kind of plot draws, how to read the markers, the chart group the narrative contrasts); this
 //! module composes them and names no chart or integrator itself.
 //!
-//! Per case: a "what this shows" paragraph computed from the numbers (`narrative`); for a case
-//! with several scenes, the family's measures across scenes (`scenes`); per
-//! scene, work-precision (error vs wall time and vs RHS evaluations, `work_precision`),
-//! convergence with the fitted orders (`convergence`), energy drift and constraint residual
-//! over time (`timeseries`), and the variants x metrics matrix; then the failure table, the
+//! Per case: a "what this shows" paragraph computed from the numbers (`narrative`); a heat map
+//! of variants x metrics per scene, open (`heatmap`); for a case with several scenes, the
+//! family's measures across scenes (`scenes`); per scene, work-precision (error vs wall time
+//! and vs RHS evaluations, `work_precision`), convergence with the fitted orders and their fit
+//! quality (`convergence`), energy drift and constraint residual over time (`timeseries`),
+//! each selection in panels of at most eight lines (`select`), and the full variants x
+//! metrics matrix; then the failure table, the
 //! largest completed ladder step per variant, the stability study's part when a
 //! `stability.json` is given (`stability`: step-search tables, stiffness-ladder and
 //! long-horizon plots), and the n/a combinations (`tables`). Colour =
 //! integrator, marker = parameterization, dashed = the family's second formulation in every plot
-//! (`style`); log axes carry explicit decade ticks with both end labels (`axes`).
+//! (`style`; colours that share a panel differ by CIEDE2000 >= 20, `colour`); log axes carry
+//! explicit decade ticks with both end labels (`axes`).
 //!
 //! Robustness: a missing or unreadable series file, an `n/a` record, a null metric or a case
 //! absent from `cases` never stops the report: the affected plot or cell says "no data" (or
@@ -26,12 +30,15 @@
 pub mod advice;
 pub mod axes;
 pub mod chart;
+pub mod colour;
 pub mod convergence;
 pub mod data;
+pub mod heatmap;
 pub mod html;
 pub mod markdown;
 pub mod narrative;
 pub mod scenes;
+pub mod script;
 pub mod select;
 pub mod stability;
 pub mod style;
@@ -81,6 +88,10 @@ pub struct SceneSection {
     pub convergence: Vec<Figure>,
     pub timeseries: Vec<Figure>,
     pub matrix: tables::Table,
+    /// The matrix as a heat map (shown open on the page).
+    pub heat: heatmap::HeatMap,
+    /// Variants of the scene (not table rows: a gated run adds a row).
+    pub variants: usize,
 }
 
 /// One case of the page.
@@ -202,6 +213,7 @@ pub fn build_page(
     let sections = views
         .iter()
         .map(|cv| {
+            let columns = heatmap::columns(cv, gate_rows);
             let scenes = cv
                 .scenes
                 .iter()
@@ -225,6 +237,8 @@ pub fn build_page(
                         .map(figure)
                         .collect(),
                     matrix: tables::matrix(cv, sv, gate_rows),
+                    heat: heatmap::heatmap(cv, sv, &columns, gate_rows),
+                    variants: sv.variants.len(),
                 })
                 .collect();
             CaseSection {
@@ -323,9 +337,10 @@ pub fn write_report(
         }));
         let figs = figs.chain(c.stability.iter().flat_map(|st| st.figures()));
         for f in figs {
-            let chart::Rendered::Svg(svg) = &f.body else {
+            let chart::Rendered::Svg(drawn) = &f.body else {
                 continue;
             };
+            let svg = &drawn.file;
             let mut rel = format!("svg/{}", safe(&c.name));
             for part in f.kind.split('/') {
                 rel.push('/');

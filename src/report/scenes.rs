@@ -12,12 +12,13 @@
 //! list; e.g. 5e-3 of {1e-2, 5e-3, 2.5e-3}, 1e-8 of {1e-4, ..., 1e-12}); when no value is
 //! common to all, each variant uses the middle of its own common values (the caption says
 //! which). Points of one scene are spread horizontally by parameterization so markers do not
-//! hide each other.
+//! hide each other; they are dots, never joined (the scenes are categories). Each selection is
+//! drawn in its panels (`select::panels`), at most eight variants each.
 use std::collections::BTreeSet;
 
 use super::chart::{FailMark, Legend, Line, Plot};
 use super::data::{self, CaseView, VariantKey};
-use super::select::{Admits, Selection};
+use super::select::{Admits, Panel, panels};
 use crate::problem::figures::Admit;
 use crate::problem::{Axis, axis_names};
 use crate::summary::{Record, Status};
@@ -33,7 +34,9 @@ pub fn plots(cv: &CaseView, footer: &str) -> Vec<Plot> {
         .figures
         .across_scenes
         .iter()
-        .map(|&(sel, m)| plot(cv, sel, m, footer))
+        .flat_map(|&(sel, m)| panels(sel, cv.family).into_iter().map(move |p| (p, m)))
+        .filter(|(p, _)| !keys(cv, p).is_empty())
+        .map(|(p, m)| plot(cv, &p, m, footer))
         .collect()
 }
 
@@ -53,7 +56,7 @@ fn middle(set: &BTreeSet<u64>) -> Option<f64> {
 }
 
 /// The variants of a selection present in the case, in registry order.
-fn keys(cv: &CaseView, sel: Selection) -> Vec<VariantKey> {
+fn keys(cv: &CaseView, sel: &Panel) -> Vec<VariantKey> {
     let mut ks: Vec<VariantKey> = cv
         .scenes
         .iter()
@@ -66,7 +69,7 @@ fn keys(cv: &CaseView, sel: Selection) -> Vec<VariantKey> {
 }
 
 /// The ladder value a variant is drawn at, and whether it is the plot-wide common value.
-pub fn chosen_values(cv: &CaseView, sel: Selection) -> (Vec<(VariantKey, Option<f64>)>, bool) {
+pub fn chosen_values(cv: &CaseView, sel: &Panel) -> (Vec<(VariantKey, Option<f64>)>, bool) {
     let ks = keys(cv, sel);
     let per_variant: Vec<(VariantKey, BTreeSet<u64>)> = ks
         .into_iter()
@@ -110,7 +113,7 @@ pub fn chosen_values(cv: &CaseView, sel: Selection) -> (Vec<(VariantKey, Option<
 }
 
 /// One across-scene plot.
-pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
+pub fn plot(cv: &CaseView, sel: &Panel, m: Measure, footer: &str) -> Plot {
     let names: Vec<String> = cv.scenes.iter().map(|s| s.name.clone()).collect();
     let (chosen, common) = chosen_values(cv, sel);
     let params = axis_names(Axis::Param);
@@ -164,7 +167,7 @@ pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
         .collect();
     vals.sort();
     vals.dedup();
-    let step = if sel.admit == Admit::Adaptive {
+    let step = if sel.sel.admit == Admit::Adaptive {
         "tol"
     } else {
         "dt"
@@ -194,7 +197,12 @@ pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
         ),
     };
     Plot {
-        id: id.into(),
+        id: if sel.id == sel.sel.id {
+            id.to_string()
+        } else {
+            format!("{id}_{}", sel.id)
+        },
+        round_off: None,
         title: format!("{}: {} across scenes ({})", cv.name, y_label, sel.short),
         x_label: "scene".into(),
         y_label,
@@ -204,7 +212,8 @@ pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
         fails,
         legend: Legend::Factored,
         caption: format!(
-            "Across scenes: {what}, {at}. {} Marks in the red band: runs that failed.",
+            "Across scenes: {what}, {at}. {} One dot per variant and scene (scenes are \
+             categories: the dots are not joined). Marks in the red band: runs that failed.",
             sel.describe
         ),
         footer: footer.into(),

@@ -99,6 +99,24 @@ pub fn marker(param: &str) -> Marker {
     }
 }
 
+/// A text glyph for a marker (the page's HTML legends): the same shape, filled or hollow.
+pub fn glyph(m: Marker) -> char {
+    match m {
+        Marker::TriangleUp => '▲',
+        Marker::TriangleDown => '▼',
+        Marker::TriangleRight => '▶',
+        Marker::DiamondHollow => '◇',
+        Marker::DiamondFilled => '◆',
+        Marker::CircleHollow => '○',
+        Marker::CircleFilled => '●',
+        Marker::SquareHollow => '□',
+        Marker::SquareFilled => '■',
+        Marker::Cross => '×',
+        Marker::Plus => '+',
+        Marker::TriangleUpHollow => '△',
+    }
+}
+
 /// Whether a formulation's lines are dashed: the second (fourth, ...) formulation of its
 /// family's axis is, the first (third, ...) and unknown ones are solid (the rigid body:
 /// `body` solid, `spatial` dashed).
