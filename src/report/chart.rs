@@ -142,10 +142,11 @@ pub struct Drawn {
     pub legend: Vec<Entry>,
 }
 
-/// The smallest `m e k` (m a digit 1..9) at or above `x > 0`: "stays below 3e-16".
+/// The smallest `m e k` (m a digit 1..9) strictly above `x > 0`: "stays below 3e-16" for a
+/// largest value of 2.2e-16.
 pub fn bound_above(x: f64) -> String {
     let e = x.log10().floor() as i32;
-    let m = (x / 10f64.powi(e) * (1.0 + 1e-12)).ceil() as i32;
+    let m = (x / 10f64.powi(e)).floor() as i32 + 1;
     if m >= 10 {
         format!("1e{}", e + 1)
     } else {
@@ -199,9 +200,10 @@ pub fn render(p: &Plot) -> Result<Rendered, DrawError> {
             .fold(0.0f64, |a, v| a.max(v.abs()));
         if p.fails.is_empty() && top > 0.0 && top < ROUND_OFF {
             return Ok(Rendered::Note(format!(
-                "{what} stays below {} in every drawn run ({lines} variants): at round-off, \
-                 so there is nothing to plot.",
-                bound_above(top)
+                "{what} stays below {} in every drawn run ({lines} variant{}): at \
+                 round-off, so there is nothing to plot.",
+                bound_above(top),
+                if lines == 1 { "" } else { "s" }
             )));
         }
     }
@@ -577,12 +579,21 @@ fn legend_entries(p: &Plot) -> Vec<Entry> {
                     text: q.into(),
                 });
             }
-            out.push(Entry::Heading("formulation (line)".into()));
+            // Dots on a category axis have no line: a chart's formulations sit side by side.
+            let category = matches!(p.x, super::axes::Scale::Category(_));
+            out.push(Entry::Heading(
+                if category {
+                    "formulation (left to right)"
+                } else {
+                    "formulation (line)"
+                }
+                .into(),
+            ));
             for f in forms {
                 out.push(Entry::Sample {
                     colour: INK,
                     dashed: style::dashed(f),
-                    line: true,
+                    line: !category,
                     marker: None,
                     text: f.into(),
                 });
@@ -720,6 +731,70 @@ mod tests {
             assert!(s.contains(&format!("\n{t}\n")), "missing {t}");
         }
         assert!(!s.contains("href") && !s.contains(" src="));
+    }
+
+    /// A relative quantity whose every value is below `ROUND_OFF` becomes one sentence with
+    /// a bound computed from the data (strictly above the largest value); one value above
+    /// round-off brings the plot back.
+    #[test]
+    fn round_off_is_one_sentence() {
+        assert_eq!(bound_above(2.2e-16), "3e-16");
+        assert_eq!(bound_above(9.5e-15), "1e-14");
+        let mut p = plot(
+            vec![Line {
+                key: key("so3", "rk4", "body"),
+                points: vec![(1.0, 2.2e-16), (2.0, 1e-16)],
+                label: None,
+                marker_every: 1,
+            }],
+            vec![],
+        );
+        p.round_off = Some("constraint residual (so3)".into());
+        match render(&p).unwrap() {
+            Rendered::Note(s) => assert!(
+                s.starts_with("constraint residual (so3) stays below 3e-16"),
+                "{s}"
+            ),
+            other => panic!("{other:?}"),
+        }
+        p.lines[0].points.push((3.0, 1e-9));
+        assert!(matches!(render(&p).unwrap(), Rendered::Svg(_)));
+    }
+
+    /// On a category axis the points are dots: no polyline joins them, but each series is
+    /// still counted.
+    #[test]
+    fn categories_are_not_joined() {
+        let mut p = plot(
+            vec![Line {
+                key: key("so3", "rk4", "body"),
+                points: vec![(0.0, 1e-3), (1.0, 1e-4), (2.0, 1e-5)],
+                label: None,
+                marker_every: 1,
+            }],
+            vec![],
+        );
+        p.x = Scale::Category(vec!["a".into(), "b".into(), "c".into()]);
+        let Rendered::Svg(d) = render(&p).unwrap() else {
+            panic!("no svg")
+        };
+        assert_eq!(d.lines, 1);
+        assert_eq!(d.inline.matches("<g class=\"series\"").count(), 1);
+        // The series group holds no line (plotters' own axes are polylines too).
+        assert!(
+            d.inline
+                .contains("<g class=\"series\" data-variant=\"so3 / rk4 / body\">\n</g>"),
+            "{}",
+            d.inline
+        );
+        p.x = Scale::Linear;
+        let Rendered::Svg(d) = render(&p).unwrap() else {
+            panic!("no svg")
+        };
+        assert!(
+            d.inline
+                .contains("<g class=\"series\" data-variant=\"so3 / rk4 / body\">\n<polyline")
+        );
     }
 
     /// Lines without representable values and no failures give "no data".

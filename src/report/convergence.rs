@@ -121,3 +121,39 @@ pub fn plot(cv: &CaseView, sv: &SceneView, sel: &Panel, footer: &str) -> Plot {
         round_off: None,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fit(order: Option<f64>, points: Vec<[f64; 2]>) -> FitRecord {
+        FitRecord {
+            key: crate::summary::RunKey::new("c", "s", "so3", "rk4", "body"),
+            metric: "e".into(),
+            order,
+            reason: None,
+            points,
+        }
+    }
+
+    /// An order is printed with the range of its local slopes; a fit whose local slopes
+    /// differ by more than `ASYMPTOTIC_SPREAD` is "not asymptotic" and prints no order.
+    #[test]
+    fn order_with_fit_quality() {
+        let law: Vec<[f64; 2]> = [1e-2f64, 2e-2, 4e-2]
+            .iter()
+            .map(|h| [*h, h.powi(4)])
+            .collect();
+        let t = fit_text(Some(&fit(Some(4.0), law)));
+        assert_eq!(t, "p = 4.00 (local 4.00..4.00)");
+        let floor = vec![[1e-2, 1e-9], [2e-2, 1e-9], [4e-2, 1.6e-8]];
+        let t = fit_text(Some(&fit(Some(2.0), floor)));
+        assert!(
+            t.starts_with("not asymptotic (local slopes 0.0..4.0)"),
+            "{t}"
+        );
+        assert!(!t.contains("p ="));
+        assert_eq!(fit_text(Some(&fit(None, vec![]))), "p n/a");
+        assert_eq!(fit_text(None), "p n/a");
+    }
+}

@@ -220,8 +220,8 @@ pub fn heatmap(
              worst; smaller is better{}. Hatched red: the run failed (its kind in the cell). \
              Blank grey: does not apply; grey null: could not be computed. Gated cells have a \
              frame: green with ✓ passed, black with ✗ failed. Click a column's name to sort \
-             the rows best first, again for worst first; the first column restores registry \
-             order.",
+             the rows best first, again for worst first; param restores registry order. The \
+             table scrolls inside its frame.",
             if gates.is_some() {
                 ", plus any gated run at another point"
             } else {
@@ -258,13 +258,18 @@ pub fn html(h: &HeatMap) -> String {
         return s;
     }
     s.push_str("<div class=\"tablewrap\">\n<table class=\"heatmap\">\n<thead><tr>");
-    for (i, name) in ["variant", "integrator", "formulation", "step"]
+    for (i, name) in ["param", "integrator", "formulation", "step"]
         .iter()
         .enumerate()
     {
-        s.push_str(&format!(
-            "<th data-col=\"{i}\"><button type=\"button\">{name}</button></th>"
-        ));
+        // Only `param` sorts among the label columns: back to registry order.
+        if i == 0 {
+            s.push_str(&format!(
+                "<th data-col=\"{i}\"><button type=\"button\">{name}</button></th>"
+            ));
+        } else {
+            s.push_str(&format!("<th data-col=\"{i}\">{name}</th>"));
+        }
     }
     for (i, c) in h.columns.iter().enumerate() {
         let range = c

@@ -96,6 +96,9 @@ td.gp{box-shadow:inset 0 0 0 2px #1b7f3b}td.gf{box-shadow:inset 0 0 0 3px #000;f
 .ramp{font-size:12px;display:flex;flex-wrap:wrap;align-items:center;gap:0;margin:2px 0}
 .ramp span{display:inline-block;width:22px;height:12px;border:0}
 .ramp .hfail,.ramp .hna{width:auto;height:auto;padding:0 4px;margin:0 4px 0 12px}
+section.advice{overflow-x:auto}
+.heat .tablewrap{max-height:560px;overflow:auto;border:1px solid #ddd}
+.heat table{margin:0}
 table.advice{margin:4px 0}table.advice td,table.advice th{padding:1px 6px}
 section.advice h2{margin:10px 0 2px}section.advice p{margin:2px 0;font-size:13px}
 ";
@@ -138,15 +141,16 @@ pub fn legend(entries: &[Entry]) -> String {
                 text,
             } => {
                 let hex = super::style::hex(*colour);
-                let class = match (line, dashed) {
-                    (false, _) => "ls none",
-                    (true, true) => "ls dash",
-                    (true, false) => "ls",
+                let sample = match (line, dashed) {
+                    (false, _) => "<span class=\"ls none\"></span>".to_string(),
+                    (true, dashed) => format!(
+                        "<span class=\"ls{}\" style=\"border-top-color:{hex}\"></span>",
+                        if *dashed { " dash" } else { "" }
+                    ),
                 };
                 let glyph = marker.map(super::style::glyph).unwrap_or(' ');
                 s.push_str(&format!(
-                    "<li><span class=\"{class}\" style=\"border-top-color:{hex}\"></span>\
-                     <span class=\"lm\" style=\"color:{hex}\">{glyph}</span>{}</li>",
+                    "<li>{sample}<span class=\"lm\" style=\"color:{hex}\">{glyph}</span>{}</li>",
                     esc(text)
                 ));
             }

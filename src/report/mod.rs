@@ -368,9 +368,14 @@ mod tests {
     use super::*;
     use crate::gate::{GateRow, Verdict};
 
-    /// Plots per scene (6 work-precision, 2 convergence, 4 time series) and across scenes.
-    const PER_SCENE: usize = 12;
-    const ACROSS: usize = 3;
+    /// The plots the page holds for a case (each scene's and the across-scene ones).
+    fn plots_of(c: &CaseSection) -> usize {
+        c.across.len()
+            + c.scenes
+                .iter()
+                .map(|s| s.work_precision.len() + s.convergence.len() + s.timeseries.len())
+                .sum::<usize>()
+    }
 
     fn case_html<'a>(html: &'a str, case: &str) -> &'a str {
         let start = html
@@ -404,16 +409,75 @@ mod tests {
         }
         assert!(!html.contains(" src=") && !html.contains(" href="));
         let sec = case_html(&html, fixture::CASE);
-        let expected = fixture::SCENES.len() * PER_SCENE + ACROSS;
-        assert_eq!(sec.matches("<svg").count(), expected);
-        assert_eq!(sec.matches("<figure").count(), expected);
-        assert_eq!(files.svgs.len(), expected);
-        assert!(files.svgs.iter().all(|p| p.is_file()));
+        let page = build_page(&s, &dir.join("series"), &cases, None, None);
+        let expected = plots_of(&page.cases[0]);
+        // Plots at round-off are one sentence instead of an SVG.
+        let c = &page.cases[0];
+        let bodies: Vec<&chart::Rendered> = c
+            .across
+            .iter()
+            .chain(c.scenes.iter().flat_map(|s| {
+                s.work_precision
+                    .iter()
+                    .chain(&s.convergence)
+                    .chain(&s.timeseries)
+            }))
+            .map(|f| &f.body)
+            .collect();
+        let svgs = bodies
+            .iter()
+            .filter(|b| matches!(b, chart::Rendered::Svg(_)))
+            .count();
+        let notes = bodies
+            .iter()
+            .filter(|b| matches!(b, chart::Rendered::Note(_)))
+            .count();
         assert!(
-            out.join("svg/nine_spring/large/wp_wall_rk4.svg").is_file(),
-            "{:?}",
-            files.svgs
+            notes > 0,
+            "the fixture's constraint residuals are at round-off"
         );
+        assert_eq!(sec.matches("<p class=\"nodata roundoff\">").count(), notes);
+        assert_eq!(sec.matches("<figure").count(), expected);
+        assert_eq!(sec.matches("<svg").count(), svgs);
+        assert_eq!(sec.matches("<svg data-lines=\"").count(), svgs);
+        assert_eq!(files.svgs.len(), svgs);
+        assert!(files.svgs.iter().all(|p| p.is_file()));
+        // rk4 on so3 is in the Lie-group charts' panel, lgvi in the geometric methods' one.
+        for f in [
+            "wp_wall_rk4_group",
+            "wp_rhs_so3_geometric",
+            "conv_so3_explicit",
+        ] {
+            assert!(
+                out.join(format!("svg/nine_spring/large/{f}.svg")).is_file(),
+                "{f}: {:?}",
+                files.svgs
+            );
+        }
+        // No panel draws more than MAX_LINES lines, and the page says how many it draws.
+        let figs = page.cases[0].scenes.iter().flat_map(|s| {
+            s.work_precision
+                .iter()
+                .chain(&s.convergence)
+                .chain(&s.timeseries)
+        });
+        for f in figs {
+            if let chart::Rendered::Svg(d) = &f.body {
+                assert!(d.lines <= select::MAX_LINES, "{}: {}", f.kind, d.lines);
+                assert!(sec.contains(&format!("<svg data-lines=\"{}\"", d.lines)));
+            }
+        }
+        // The heat maps are open (outside any <details>), one per scene.
+        let heat = sec.find("data-section=\"heatmaps\"").expect("heat maps");
+        assert!(!sec[..heat].contains("<details"));
+        assert_eq!(
+            sec.matches("<table class=\"heatmap\">").count(),
+            fixture::SCENES.len()
+        );
+        // No literal markdown reaches the page.
+        for md in ["**", "`", "]("] {
+            assert!(!html.contains(md), "{md} in the page");
+        }
         for kind in html::REQUIRED_SECTIONS
             .iter()
             .chain(&["na", "across-scenes"])
@@ -463,15 +527,21 @@ mod tests {
         let html = std::fs::read_to_string(&files.index_html).unwrap();
         assert_eq!(render_check(&html), Vec::<String>::new());
         let sec = case_html(&html, fixture::CASE);
-        let timeseries = fixture::SCENES.len() * 4;
-        assert_eq!(
-            sec.matches("<figure").count(),
-            fixture::SCENES.len() * PER_SCENE + ACROSS
+        let page = build_page(&s, &dir.join("nowhere"), &[], None, None);
+        let timeseries: usize = page.cases[0]
+            .scenes
+            .iter()
+            .map(|s| s.timeseries.len())
+            .sum();
+        assert!(
+            timeseries >= 2 * fixture::SCENES.len(),
+            "energy and constraint per scene"
         );
+        assert_eq!(sec.matches("<figure").count(), plots_of(&page.cases[0]));
         assert_eq!(sec.matches("<p class=\"nodata\">").count(), timeseries);
         assert_eq!(
             sec.matches("<svg").count(),
-            fixture::SCENES.len() * PER_SCENE + ACROSS - timeseries
+            plots_of(&page.cases[0]) - timeseries
         );
         assert!(sec.contains("no series file"));
         assert!(sec.contains("written on SO(3) x R^3 (chart so3) only"));
@@ -479,11 +549,40 @@ mod tests {
         fixture::write_series(&dir.join("series"), &s, |r| r.key.scene == "large");
         let files = write_report(&s, &dir.join("series"), &[], None, None, None, &out).unwrap();
         let html = std::fs::read_to_string(&files.index_html).unwrap();
+        let page = build_page(&s, &dir.join("series"), &[], None, None);
+        // The predicate names the records whose series are left out: those of `large`.
+        let large = page.cases[0]
+            .scenes
+            .iter()
+            .find(|s| s.name == "large")
+            .unwrap();
+        let nodata = |f: &Figure| matches!(f.body, chart::Rendered::NoData(_));
+        assert!(
+            large.timeseries.iter().all(nodata),
+            "{:?}",
+            large
+                .timeseries
+                .iter()
+                .map(|f| (&f.kind, &f.body))
+                .filter(|(_, b)| !matches!(b, chart::Rendered::Svg(_)))
+                .collect::<Vec<_>>()
+        );
+        let all_nodata = page.cases[0]
+            .scenes
+            .iter()
+            .flat_map(|s| {
+                s.work_precision
+                    .iter()
+                    .chain(&s.convergence)
+                    .chain(&s.timeseries)
+            })
+            .filter(|f| nodata(f))
+            .count();
         assert_eq!(
             case_html(&html, fixture::CASE)
                 .matches("<p class=\"nodata\">")
                 .count(),
-            4
+            all_nodata
         );
         // An empty summary.
         let mut empty = s.clone();

@@ -11,8 +11,9 @@
 //! every drawn variant ran in every scene, the middle one (the lower median of the sorted
 //! list; e.g. 5e-3 of {1e-2, 5e-3, 2.5e-3}, 1e-8 of {1e-4, ..., 1e-12}); when no value is
 //! common to all, each variant uses the middle of its own common values (the caption says
-//! which). Points of one scene are spread horizontally by parameterization so markers do not
-//! hide each other; they are dots, never joined (the scenes are categories). Each selection is
+//! which). Points of one scene are spread horizontally, one slot per variant of the panel in
+//! registry order (so a chart's two formulations sit side by side, body left), so markers do
+//! not hide each other; they are dots, never joined (the scenes are categories). Each selection is
 //! drawn in its panels (`select::panels`), at most eight variants each.
 use std::collections::BTreeSet;
 
@@ -20,7 +21,6 @@ use super::chart::{FailMark, Legend, Line, Plot};
 use super::data::{self, CaseView, VariantKey};
 use super::select::{Admits, Panel, panels};
 use crate::problem::figures::Admit;
-use crate::problem::{Axis, axis_names};
 use crate::summary::{Record, Status};
 
 pub use crate::problem::figures::Measure;
@@ -116,18 +116,14 @@ pub fn chosen_values(cv: &CaseView, sel: &Panel) -> (Vec<(VariantKey, Option<f64
 pub fn plot(cv: &CaseView, sel: &Panel, m: Measure, footer: &str) -> Plot {
     let names: Vec<String> = cv.scenes.iter().map(|s| s.name.clone()).collect();
     let (chosen, common) = chosen_values(cv, sel);
-    let params = axis_names(Axis::Param);
-    let n_params = params.len() as f64;
+    let n_keys = chosen.len().max(1) as f64;
     let mut lines = vec![];
     let mut fails = vec![];
-    for (k, value) in &chosen {
+    for (idx, (k, value)) in chosen.iter().enumerate() {
         let Some(value) = value else { continue };
-        let p_idx = params
-            .iter()
-            .position(|p| *p == k.param)
-            .unwrap_or(params.len()) as f64;
-        // Spread over 70% of a category's width, by parameterization.
-        let jitter = 0.7 * (p_idx - 0.5 * (n_params - 1.0)) / n_params;
+        // Spread over 70% of a category's width, one slot per variant of the panel (in
+        // registry order: a chart's formulations side by side, body left).
+        let jitter = 0.7 * (idx as f64 - 0.5 * (n_keys - 1.0)) / n_keys;
         let mut points = vec![];
         for (i, s) in cv.scenes.iter().enumerate() {
             let Some(r) = s

@@ -153,6 +153,80 @@ pub fn panels(sel: Selection, family: &Family) -> Vec<Panel> {
     }
 }
 
+/// A plot cut into plots of at most `MAX_LINES` lines, for plots whose lines are not chosen
+/// by a selection (the stability study's, whose variants depend on the run's filter): unchanged
+/// when it is small enough; else one plot per integrator kind, and a kind with more lines in
+/// consecutive parts of at most `MAX_LINES`. Ids and titles name the part; each failure mark
+/// goes with its variant's line (to the kind's first part when the variant has no line).
+pub fn split_crowded(p: super::chart::Plot) -> Vec<super::chart::Plot> {
+    if p.lines.len() <= MAX_LINES {
+        return vec![p];
+    }
+    let mut out = vec![];
+    for kind in MethodKind::ALL {
+        let lines: Vec<_> = p
+            .lines
+            .iter()
+            .filter(|l| kind_of(&l.key.integrator) == kind)
+            .cloned()
+            .collect();
+        let fails: Vec<_> = p
+            .fails
+            .iter()
+            .filter(|f| kind_of(&f.key.integrator) == kind)
+            .collect();
+        if lines.is_empty() && fails.is_empty() {
+            continue;
+        }
+        let chunks: Vec<Vec<_>> = if lines.is_empty() {
+            vec![vec![]]
+        } else {
+            lines.chunks(MAX_LINES).map(<[_]>::to_vec).collect()
+        };
+        let n = chunks.len();
+        for (i, chunk) in chunks.into_iter().enumerate() {
+            let part = if n == 1 {
+                String::new()
+            } else {
+                format!("_{}", i + 1)
+            };
+            let mine = |k: &super::data::VariantKey| chunk.iter().any(|l| &l.key == k);
+            let fails = fails
+                .iter()
+                .filter(|f| mine(&f.key) || (i == 0 && !p.lines.iter().any(|l| l.key == f.key)))
+                .map(|f| (*f).clone())
+                .collect();
+            out.push(super::chart::Plot {
+                id: format!("{}_{}{part}", p.id, kind.name()),
+                title: if n == 1 {
+                    format!("{} ({} methods)", p.title, kind.name())
+                } else {
+                    format!(
+                        "{} ({} methods, part {} of {n})",
+                        p.title,
+                        kind.name(),
+                        i + 1
+                    )
+                },
+                caption: format!(
+                    "{} This panel: the {} methods{}; the plots beside it draw the rest.",
+                    p.caption,
+                    kind.name(),
+                    if n == 1 {
+                        String::new()
+                    } else {
+                        format!(", part {} of {n}", i + 1)
+                    }
+                ),
+                lines: chunk,
+                fails,
+                ..p.clone()
+            });
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -201,6 +275,54 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A crowded plot is cut into plots of at most `MAX_LINES` lines that together hold
+    /// every line once, each with its own id; a small plot is left as it is.
+    #[test]
+    fn crowded_plots_are_split() {
+        use super::super::chart::{Legend, Line, Plot};
+        use super::super::data::VariantKey;
+        let line = |p: &str, i: &str| Line {
+            key: VariantKey {
+                param: p.into(),
+                integrator: i.into(),
+                formulation: "body".into(),
+            },
+            points: vec![(1.0, 1.0)],
+            label: None,
+            marker_every: 1,
+        };
+        let params = crate::problem::axis_names(crate::problem::Axis::Param);
+        let mut lines: Vec<Line> = params.iter().map(|p| line(p, "rk4")).collect();
+        lines.push(line("so3", "lgvi"));
+        let p = Plot {
+            id: "x".into(),
+            title: "t".into(),
+            x_label: String::new(),
+            y_label: String::new(),
+            x: super::super::axes::Scale::Log,
+            y: super::super::axes::Scale::Log,
+            lines,
+            fails: vec![],
+            legend: Legend::PerLine,
+            caption: String::new(),
+            footer: String::new(),
+            round_off: None,
+        };
+        let total = p.lines.len();
+        assert!(total > MAX_LINES);
+        let parts = split_crowded(p.clone());
+        assert!(parts.iter().all(|q| q.lines.len() <= MAX_LINES));
+        assert_eq!(parts.iter().map(|q| q.lines.len()).sum::<usize>(), total);
+        let mut ids: Vec<&str> = parts.iter().map(|q| q.id.as_str()).collect();
+        ids.dedup();
+        assert_eq!(ids.len(), parts.len(), "{ids:?}");
+        let small = Plot {
+            lines: p.lines[..3].to_vec(),
+            ..p
+        };
+        assert_eq!(split_crowded(small.clone())[0].id, small.id);
     }
 
     /// The Kahan twins are left out and the kinds come from the integrators' facts.
