@@ -38,7 +38,7 @@ const INTEGRATOR_COLOURS: [RGBColor; 16] = [
     RGBColor(0, 100, 100),   // implicit_midpoint_kahan: dark teal
     RGBColor(120, 60, 0),    // gauss6_kahan: dark brown
     RGBColor(0, 90, 75),     // simo_wong_kahan: dark sea green
-    RGBColor(120, 105, 0),   // stormer_verlet (spring chain): dark olive
+    RGBColor(120, 105, 0),   // the next family's own method: dark olive
 ];
 
 /// Extra colours for integrators past the palette.
