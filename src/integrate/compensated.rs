@@ -291,6 +291,7 @@ impl<S: CompensatedRetract> FixedStep<S> for GaussKahan<S> {
             "implicit_midpoint" => "implicit_midpoint_kahan",
             _ => "gauss6_kahan",
         };
+        i.twin_of = Some(FixedStep::<S>::info(&self.inner).name);
         i
     }
 

@@ -27,7 +27,7 @@
 //! stage value is a `non_finite` failure, the state is left unchanged.
 use super::explicit_rk::FixedTableau;
 use super::tableau::{MAX_STAGES, Tableau};
-use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats, System};
+use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats, System};
 use crate::math::vector::Vector;
 use std::marker::PhantomData;
 
@@ -122,6 +122,8 @@ impl<S: System, T: FixedTableau> FixedStep<S> for CrouchGrossman<S, T> {
             lie_group: S::LIE,
             energy_conserving: false,
             adaptive: false,
+            kind: MethodKind::Geometric,
+            twin_of: None,
         }
     }
 

@@ -25,7 +25,7 @@
 //! only conditionally stable: too large a step gives a growing but finite solution, caught by
 //! the caller's checks).
 use super::tableau::{EULER, MAX_STAGES, RK4, Tableau};
-use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats, System};
+use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats, System};
 use crate::math::vector::Vector;
 use std::marker::PhantomData;
 
@@ -138,6 +138,8 @@ impl<S: System, T: FixedTableau> FixedStep<S> for ExplicitRk<S, T> {
             lie_group: S::LIE,
             energy_conserving: false,
             adaptive: false,
+            kind: MethodKind::Explicit,
+            twin_of: None,
         }
     }
 

@@ -39,7 +39,7 @@ use nalgebra::{Matrix3, UnitQuaternion, Vector3, Vector6};
 use super::body_momentum::{is_finite_state, omega_from_pi};
 use super::newton_stop::{NewtonStop, relative, update_norm};
 use super::own_state::{OwnState, So3State};
-use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats};
+use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
 use crate::math::so3;
 use crate::model::rigid_body::RigidSystem;
 use crate::rotation::{Body, Pose, So3};
@@ -101,6 +101,8 @@ impl FixedStep<RigidSystem<So3, Body>> for Lgvi {
             lie_group: true,
             energy_conserving: false,
             adaptive: false,
+            kind: MethodKind::Geometric,
+            twin_of: None,
         }
     }
 

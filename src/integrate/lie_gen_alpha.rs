@@ -38,7 +38,7 @@ use std::sync::Mutex;
 
 use super::newton_stop::{NewtonStop, relative, update_norm};
 use super::own_state::{OwnState, So3State};
-use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats, System};
+use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats, System};
 use crate::math::so3;
 use crate::model::rigid_body::RigidSystem;
 use crate::rotation::{Body, Pose, So3};
@@ -168,6 +168,8 @@ impl FixedStep<RigidSystem<So3, Body>> for LieGenAlpha {
             lie_group: true,
             energy_conserving: false,
             adaptive: false,
+            kind: MethodKind::Geometric,
+            twin_of: None,
         }
     }
 

@@ -269,6 +269,45 @@ pub struct MethodInfo {
     pub lie_group: bool,
     pub energy_conserving: bool,
     pub adaptive: bool,
+    /// The family of method, for grouping (the report draws one panel per kind).
+    pub kind: MethodKind,
+    /// For a twin that differs from another method only in how it sums (Kahan-compensated
+    /// summation), that method's name: the twins matter over long horizons only, and the
+    /// short-horizon plots leave them out.
+    pub twin_of: Option<&'static str>,
+}
+
+/// The family a method belongs to, independent of the chart it runs on (RKMK4 on a Lie-group
+/// chart is still an explicit Runge-Kutta method).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MethodKind {
+    /// Explicit Runge-Kutta methods, fixed step or adaptive (Euler, RK4, Dormand-Prince).
+    Explicit,
+    /// Implicit Runge-Kutta methods on any chart (the Gauss collocation methods).
+    Implicit,
+    /// Structure-preserving methods written for the problem: Lie-group (Crouch-Grossman,
+    /// Lie generalized-alpha), variational (LGVI, Stormer-Verlet), splitting and
+    /// energy-momentum (Simo-Wong) methods.
+    Geometric,
+}
+
+impl MethodKind {
+    /// Every kind, in report order.
+    pub const ALL: [MethodKind; 3] = [
+        MethodKind::Explicit,
+        MethodKind::Implicit,
+        MethodKind::Geometric,
+    ];
+
+    /// The kind's name (`explicit`, `implicit`, `geometric`).
+    pub fn name(self) -> &'static str {
+        match self {
+            MethodKind::Explicit => "explicit",
+            MethodKind::Implicit => "implicit",
+            MethodKind::Geometric => "geometric",
+        }
+    }
 }
 
 /// A fixed-step one-step method. It counts its RHS evaluations and Newton iterations in

@@ -48,7 +48,7 @@ use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 use super::lu6::Lu6;
 use super::newton_stop::{NewtonStop, relative, update_norm};
 use super::own_state::So3State;
-use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats};
+use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
 use crate::math::so3;
 use crate::model::rigid_body::{RigidBody, RigidSystem};
 use crate::rotation::{Body, Pose, So3};
@@ -184,6 +184,8 @@ impl FixedStep<RigidSystem<So3, Body>> for SimoWong {
             lie_group: true,
             energy_conserving: true,
             adaptive: false,
+            kind: MethodKind::Geometric,
+            twin_of: None,
         }
     }
 

@@ -26,7 +26,7 @@ use super::compensated::{CompensatedRetract, add_compensated, so3_product_compen
 use super::newton_stop::{NewtonStop, relative, update_norm};
 use super::own_state::So3State;
 use super::simo_wong::{StepData, forward_jacobian};
-use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats};
+use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
 use crate::math::so3;
 use crate::model::rigid_body::RigidSystem;
 use crate::rotation::{Body, Pose, So3};
@@ -98,6 +98,8 @@ impl FixedStep<RigidSystem<So3, Body>> for SimoWongKahan {
             lie_group: true,
             energy_conserving: true,
             adaptive: false,
+            kind: MethodKind::Geometric,
+            twin_of: Some("simo_wong"),
         }
     }
 

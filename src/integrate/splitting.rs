@@ -34,7 +34,7 @@ use nalgebra::{Matrix3, Quaternion, SymmetricEigen, UnitQuaternion, Vector3, Vec
 
 use super::body_momentum::{is_finite_state, omega_from_pi};
 use super::own_state::{OwnState, So3State};
-use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats};
+use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
 use crate::model::rigid_body::{RigidBody, RigidSystem};
 use crate::rotation::{Body, So3};
 
@@ -151,6 +151,8 @@ impl FixedStep<RigidSystem<So3, Body>> for Splitting {
             lie_group: true,
             energy_conserving: false,
             adaptive: false,
+            kind: MethodKind::Geometric,
+            twin_of: None,
         }
     }
 

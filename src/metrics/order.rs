@@ -1,8 +1,14 @@
-//! Observed order of convergence over a step ladder (docs/schemas.md, summary.json `fits`): the
-//! least-squares slope of `log(error)` against `log(dt)` over the ladder points whose error lies
-//! between `100 x` the reference's accuracy claim (below it the reference, not the method, is
-//! measured) and `1e-2` (above it the method is outside its asymptotic range). Fewer than 3 such
-//! points give no order, with the reason.
+//! Observed order of convergence over a step ladder (docs/schemas.md, summary.json `fits`): the least-squares
+//! slope of `log(error)` against `log(dt)` over the ladder points whose error lies between
+//! `100 x` the reference's accuracy claim (below it the reference, not the method, is
+//! measured) and `1e-2` (above it the method is outside its asymptotic range). Fewer than 3
+//! such points give no order, with the reason.
+//!
+//! Fit quality: the local slopes between consecutive points of the fit (by step) and their
+//! spread (max - min). A method in its asymptotic range has local slopes close to its order;
+//! a spread above [`ASYMPTOTIC_SPREAD`] says the points straddle a change of regime (round-off,
+//! the reference floor, an unstable coarse step), and the least-squares slope is then not an
+//! order (the report says "not asymptotic" instead of printing it).
 use serde::Serialize;
 
 /// A fitted order (or the reason there is none) and the points used.
@@ -70,6 +76,36 @@ pub fn loglog_slope(points: &[[f64; 2]]) -> Option<f64> {
     slope.is_finite().then_some(slope)
 }
 
+/// The largest spread of local slopes for which a fitted slope is reported as an order.
+pub const ASYMPTOTIC_SPREAD: f64 = 1.0;
+
+/// The slopes of `log y` against `log x` between consecutive points sorted by `x` (points
+/// that are not positive, or share an `x` with their neighbour, are skipped).
+pub fn local_slopes(points: &[[f64; 2]]) -> Vec<f64> {
+    let mut p: Vec<[f64; 2]> = points
+        .iter()
+        .copied()
+        .filter(|[x, y]| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
+        .collect();
+    p.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    p.windows(2)
+        .filter(|w| w[1][0] > w[0][0])
+        .map(|w| (w[1][1] / w[0][1]).ln() / (w[1][0] / w[0][0]).ln())
+        .collect()
+}
+
+/// The spread (max - min) of the local slopes and their range; None with fewer than two
+/// local slopes (a two-point fit has nothing to compare).
+pub fn slope_spread(points: &[[f64; 2]]) -> Option<(f64, f64, f64)> {
+    let s = local_slopes(points);
+    if s.len() < 2 {
+        return None;
+    }
+    let lo = s.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = s.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    Some((hi - lo, lo, hi))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -107,5 +143,25 @@ mod tests {
         assert!(f.reason.unwrap().contains("2 of 5"));
         let with_null = vec![(0.1, None), (0.05, Some(1e-3)), (0.025, Some(1e-4))];
         assert!(fit(&with_null, 1e-12).order.is_none());
+    }
+
+    /// The local slopes of a power law all equal its exponent (spread 0); a ladder that
+    /// flattens onto a floor has a spread above `ASYMPTOTIC_SPREAD`, in any input order.
+    #[test]
+    fn local_slopes_and_spread() {
+        let law: Vec<[f64; 2]> = [4e-2, 1e-2, 2e-2]
+            .iter()
+            .map(|h: &f64| [*h, 3.0 * h.powi(4)])
+            .collect();
+        let s = local_slopes(&law);
+        assert_eq!(s.len(), 2);
+        assert!(s.iter().all(|p| (p - 4.0).abs() < 1e-12), "{s:?}");
+        let (spread, lo, hi) = slope_spread(&law).unwrap();
+        assert!(spread < 1e-12 && (lo - 4.0).abs() < 1e-12 && (hi - 4.0).abs() < 1e-12);
+        // 4th order, then flat at the floor: slopes 4 and 0.
+        let floor = [[1e-2, 1e-9], [2e-2, 1e-9], [4e-2, 1.6e-8]];
+        let (spread, lo, hi) = slope_spread(&floor).unwrap();
+        assert!(spread > ASYMPTOTIC_SPREAD && lo.abs() < 1e-12 && (hi - 4.0).abs() < 1e-12);
+        assert_eq!(slope_spread(&floor[..2]), None);
     }
 }

@@ -65,6 +65,35 @@ pub struct Selection {
     pub admit: Admit,
     /// The axes a convergence legend names: those that vary within the selection.
     pub legend_axes: &'static [Axis],
+    /// How the selection is split into panels of at most [`MAX_LINES`] lines each.
+    pub split: Split,
+}
+
+/// The most lines one panel draws: beyond about eight, colours and markers stop being told
+/// apart (the report's unit tests and the browser check hold every panel to it).
+pub const MAX_LINES: usize = 8;
+
+/// How a selection is split into panels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Split {
+    /// One panel.
+    Whole,
+    /// One panel per integrator kind (`integrate::MethodKind`: explicit, implicit, geometric).
+    Kind,
+    /// One panel per parameterization group (`Figures::param_groups`).
+    ParamGroup,
+    /// One panel per parameterization group and formulation.
+    ParamGroupFormulation,
+}
+
+/// A group of parameterizations drawn in one panel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ParamGroup {
+    /// A short id for file names.
+    pub id: &'static str,
+    /// A title fragment and caption phrase (`Euler angles and rotvec`).
+    pub label: &'static str,
+    pub params: &'static [&'static str],
 }
 
 /// A quantity drawn over time from a run's series file.
@@ -128,4 +157,7 @@ pub struct Figures {
     pub across_scenes: &'static [(Selection, Measure)],
     /// The group the narrative contrasts, if any.
     pub chart_group: Option<ChartGroup>,
+    /// The parameterization groups of `Split::ParamGroup` panels, in report order (a
+    /// parameterization in none of them gets a panel of its own kind, "other charts").
+    pub param_groups: &'static [ParamGroup],
 }

@@ -117,6 +117,17 @@ pub fn axis_names(axis: Axis) -> &'static [&'static str] {
     })
 }
 
+/// The facts of an integrator by name: those of its first registered variant in the family
+/// table (its kind and twin do not depend on the chart it runs on); None for a name no family
+/// registers.
+pub fn integrator_info(integrator: &str) -> Option<MethodInfo> {
+    FAMILIES
+        .iter()
+        .flat_map(|f| (f.variants)().iter())
+        .find(|v| v.integrator == integrator)
+        .map(|v| v.info)
+}
+
 /// The place of `name` in [`axis_names`] (`usize::MAX` for a name no family has).
 pub fn axis_position(axis: Axis, name: &str) -> usize {
     axis_names(axis)
@@ -151,6 +162,9 @@ pub struct Metric {
     /// An error against the stored reference: order fits and baseline comparisons take the
     /// reference's accuracy claim for it (`Problem::accuracy_claim`) as their floor.
     pub reference_error: bool,
+    /// Larger is better (a conditioning); for every other metric smaller is better (errors,
+    /// drifts). The report's heat map colours by it.
+    pub higher_is_better: bool,
 }
 
 /// One named column of a family's trajectories and references: `width` numbers per sample.

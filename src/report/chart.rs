@@ -1,9 +1,15 @@
 //! One plot as data (`Plot`: lines of variants, failure marks, axes, legend kind) and its
-//! rendering to an SVG string.
+//! rendering to two SVG strings: the standalone file and the page's inline chart.
 //!
-//! Layout (900 px wide, readable on a laptop): the chart on the left, the legend in a 240 px
-//! column on the right (outside the data; up to 330 px for long per-line labels), a one-line
-//! footer naming the commit and date.
+//! Layout of the file (900 px wide, readable on a laptop): the chart on the left, the legend
+//! in a 240 px column on the right (outside the data; up to 330 px for long per-line labels),
+//! a one-line footer naming the commit and date. The inline chart is the same plot 560 px
+//! wide without the legend: the page writes the legend rows (`Drawn::legend`) in HTML beside
+//! it, where they reflow on a narrow screen. Each series is a `<g class="series">` and
+//! `Drawn::lines` counts them (the page's `data-lines`). A category x axis (scene names) gets
+//! dots only, never joined. A relative quantity whose every value is below `ROUND_OFF`
+//! (`Plot::round_off`) is not drawn: one sentence with the bound computed from the data says
+//! so (`Rendered::Note`).
 //! plotters draws the frame: caption, grid, axes with the explicit ticks of `axes` (through a
 //! small `Ranged` coordinate, `Ticked`), labels, legend text and footer. The data layer
 //! (lines, markers, failure marks, legend samples) is written as SVG elements at plotters'
@@ -86,13 +92,18 @@ pub struct Plot {
     pub caption: String,
     /// Provenance line drawn under the chart.
     pub footer: String,
+    /// For a relative quantity, what it is (`constraint residual of so3`): when every value
+    /// is below `ROUND_OFF` the plot is replaced by one sentence saying so.
+    pub round_off: Option<String>,
 }
 
 /// A rendered plot, or why there is none.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Rendered {
-    Svg(String),
+    Svg(Drawn),
     NoData(String),
+    /// One sentence in place of a plot whose values are all at round-off.
+    Note(String),
 }
 
 /// Error while drawing (a plotters backend error, as text).
@@ -112,7 +123,39 @@ fn axis_for(scale: &super::axes::Scale, values: &[f64]) -> Option<AxisSpec> {
     }
 }
 
-/// Draws a plot; `NoData` when there is nothing to show.
+/// The width of a plot drawn inline in the page (its legend is HTML beside it).
+pub const INLINE_WIDTH: u32 = 560;
+const INLINE_HEIGHT: u32 = 400;
+/// Every value of a plot with `round_off` below this is at round-off (relative quantities).
+pub const ROUND_OFF: f64 = 1e-14;
+
+/// A drawn plot.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Drawn {
+    /// The standalone SVG file: the chart with its own legend.
+    pub file: String,
+    /// The chart for the page, without the legend (the page writes it in HTML beside it).
+    pub inline: String,
+    /// Series drawn (variants with at least one point on the axes).
+    pub lines: usize,
+    /// The legend's rows (the page's HTML legend).
+    pub legend: Vec<Entry>,
+}
+
+/// The smallest `m e k` (m a digit 1..9) strictly above `x > 0`: "stays below 3e-16" for a
+/// largest value of 2.2e-16.
+pub fn bound_above(x: f64) -> String {
+    let e = x.log10().floor() as i32;
+    let m = (x / 10f64.powi(e)).floor() as i32 + 1;
+    if m >= 10 {
+        format!("1e{}", e + 1)
+    } else {
+        format!("{m}e{e}")
+    }
+}
+
+/// Draws a plot; `NoData` when there is nothing to show, `Note` when every value of a
+/// relative quantity is at round-off.
 pub fn render(p: &Plot) -> Result<Rendered, DrawError> {
     // The x range follows the lines; failure marks outside it are pinned to its edges (a run
     // that failed at t = 0 took 1e-7 s and would squash the data otherwise).
@@ -131,13 +174,14 @@ pub fn render(p: &Plot) -> Result<Rendered, DrawError> {
         .collect();
     let x = axis_for(&p.x, &xs);
     let y = axis_for(&p.y, &ys);
-    let has_points = p.lines.iter().any(|l| {
+    let shown = |l: &Line| {
         l.points.iter().any(|&(a, b)| {
             x.as_ref().and_then(|x| x.map(a)).is_some()
                 && y.as_ref().and_then(|y| y.map(b)).is_some()
         })
-    });
-    if !has_points && p.fails.is_empty() {
+    };
+    let lines = p.lines.iter().filter(|l| shown(l)).count();
+    if lines == 0 && p.fails.is_empty() {
         return Ok(Rendered::NoData(format!(
             "no data: none of the {} selected variants has a {} value to plot",
             p.lines.len(),
@@ -147,6 +191,21 @@ pub fn render(p: &Plot) -> Result<Rendered, DrawError> {
                 "finite"
             }
         )));
+    }
+    if let Some(what) = &p.round_off {
+        let top = ys
+            .iter()
+            .copied()
+            .filter(|v| v.is_finite())
+            .fold(0.0f64, |a, v| a.max(v.abs()));
+        if p.fails.is_empty() && top > 0.0 && top < ROUND_OFF {
+            return Ok(Rendered::Note(format!(
+                "{what} stays below {} in every drawn run ({lines} variant{}): at \
+                 round-off, so there is nothing to plot.",
+                bound_above(top),
+                if lines == 1 { "" } else { "s" }
+            )));
+        }
     }
     let Some(x) = x.or_else(|| AxisSpec::log([1.0, 10.0])) else {
         return Ok(Rendered::NoData("no data".into()));
@@ -160,21 +219,44 @@ pub fn render(p: &Plot) -> Result<Rendered, DrawError> {
     }
     let entries = legend_entries(p);
     let height = MIN_HEIGHT.max((entries.len() as i32 * ROW_H + 40) as u32 + FOOTER_H);
+    let file = draw(p, &x, &y, (WIDTH, height), Some(&entries))?;
+    let inline = draw(p, &x, &y, (INLINE_WIDTH, INLINE_HEIGHT), None)?;
+    Ok(Rendered::Svg(Drawn {
+        file,
+        inline,
+        lines,
+        legend: entries,
+    }))
+}
+
+/// One SVG of the plot at `size`, with the legend column when `entries` is given.
+fn draw(
+    p: &Plot,
+    x: &AxisSpec,
+    y: &AxisSpec,
+    (width, height): (u32, u32),
+    entries: Option<&[Entry]>,
+) -> Result<String, DrawError> {
     let mut buf = String::new();
     let mut overlay = String::new();
     {
-        let root = SVGBackend::with_string(&mut buf, (WIDTH, height)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut buf, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
         let (main, footer) = root.split_vertically(height - FOOTER_H);
-        let legend_w = legend_width(&entries);
-        let (plot_area, legend_area) = main.split_horizontally(WIDTH - legend_w);
-        draw_chart(p, &plot_area, &x, &y, &mut overlay)?;
-        draw_legend(
-            &legend_area,
-            (WIDTH - legend_w) as i32,
-            &entries,
-            &mut overlay,
-        )?;
+        match entries {
+            Some(entries) => {
+                let legend_w = legend_width(entries);
+                let (plot_area, legend_area) = main.split_horizontally(width - legend_w);
+                draw_chart(p, &plot_area, x, y, &mut overlay)?;
+                draw_legend(
+                    &legend_area,
+                    (width - legend_w) as i32,
+                    entries,
+                    &mut overlay,
+                )?;
+            }
+            None => draw_chart(p, &main, x, y, &mut overlay)?,
+        }
         footer
             .draw(&Text::new(
                 p.footer.clone(),
@@ -189,7 +271,7 @@ pub fn render(p: &Plot) -> Result<Rendered, DrawError> {
         Some(end) => buf.insert_str(end, &overlay),
         None => return Err(DrawError("the SVG backend wrote no closing tag".into())),
     }
-    Ok(Rendered::Svg(buf))
+    Ok(buf)
 }
 
 /// A sans-serif font of `px` pixels in the SVG (plotters writes `font-size` = size / 1.24).
@@ -377,7 +459,13 @@ fn draw_chart(
             continue;
         }
         let c = style::colour(&l.key.integrator);
-        if pts.len() > 1 {
+        // One group per series (the page's self-test counts them); a category axis gets
+        // dots only, as its points are not a continuous quantity.
+        overlay.push_str(&format!(
+            "<g class=\"series\" data-variant=\"{}\">\n",
+            super::html::esc(&l.key.label())
+        ));
+        if pts.len() > 1 && !category {
             overlay.push_str(&polyline_svg(
                 &pts,
                 c,
@@ -385,11 +473,12 @@ fn draw_chart(
                 style::dashed(&l.key.formulation),
             ));
         }
+        overlay.push_str("</g>\n");
         let m = style::marker(&l.key.param);
         let every = l.marker_every.max(1);
         for (i, &q) in pts.iter().enumerate() {
             if i % every == 0 || i + 1 == pts.len() {
-                markers.push_str(&marker_svg(m, c, q, 4));
+                markers.push_str(&marker_svg(m, c, q, if category { 5 } else { 4 }));
             }
         }
     }
@@ -416,8 +505,8 @@ fn draw_chart(
 }
 
 /// One legend row.
-#[derive(Debug, Clone)]
-enum Entry {
+#[derive(Debug, Clone, PartialEq)]
+pub enum Entry {
     Heading(String),
     /// A line sample (colour, dashed, marker) and its text.
     Sample {
@@ -490,12 +579,21 @@ fn legend_entries(p: &Plot) -> Vec<Entry> {
                     text: q.into(),
                 });
             }
-            out.push(Entry::Heading("formulation (line)".into()));
+            // Dots on a category axis have no line: a chart's formulations sit side by side.
+            let category = matches!(p.x, super::axes::Scale::Category(_));
+            out.push(Entry::Heading(
+                if category {
+                    "formulation (left to right)"
+                } else {
+                    "formulation (line)"
+                }
+                .into(),
+            ));
             for f in forms {
                 out.push(Entry::Sample {
                     colour: INK,
                     dashed: style::dashed(f),
-                    line: true,
+                    line: !category,
                     marker: None,
                     text: f.into(),
                 });
@@ -565,84 +663,5 @@ fn draw_legend(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::report::axes::Scale;
-
-    fn key(p: &str, i: &str, f: &str) -> VariantKey {
-        VariantKey {
-            param: p.into(),
-            integrator: i.into(),
-            formulation: f.into(),
-        }
-    }
-
-    fn plot(lines: Vec<Line>, fails: Vec<FailMark>) -> Plot {
-        Plot {
-            id: "t".into(),
-            title: "title".into(),
-            x_label: "x".into(),
-            y_label: "y".into(),
-            x: Scale::Log,
-            y: Scale::Log,
-            lines,
-            fails,
-            legend: Legend::Factored,
-            caption: String::new(),
-            footer: "footer".into(),
-        }
-    }
-
-    /// A plot renders to one SVG element with the end labels of both log axes, the legend's
-    /// names and the failed band.
-    #[test]
-    fn renders_svg_with_end_labels() {
-        let p = plot(
-            vec![Line {
-                key: key("so3", "rk4", "spatial"),
-                points: vec![(1e-3, 2e-8), (1e-1, 3e-4)],
-                label: None,
-                marker_every: 1,
-            }],
-            vec![FailMark {
-                key: key("euler_zxz", "rk4", "body"),
-                x: 0.0,
-            }],
-        );
-        let Rendered::Svg(s) = render(&p).unwrap() else {
-            panic!("no svg")
-        };
-        assert!(s.starts_with("<svg"), "{}", &s[..40]);
-        assert_eq!(s.matches("<svg").count(), 1);
-        // plotters writes each text on its own line inside <text>.
-        for t in [
-            "1e-3",
-            "1e-1",
-            "1e-8",
-            "failed",
-            "rk4",
-            "so3",
-            "euler_zxz",
-            "spatial",
-            "footer",
-        ] {
-            assert!(s.contains(&format!("\n{t}\n")), "missing {t}");
-        }
-        assert!(!s.contains("href") && !s.contains(" src="));
-    }
-
-    /// Lines without representable values and no failures give "no data".
-    #[test]
-    fn no_data() {
-        let p = plot(
-            vec![Line {
-                key: key("so3", "rk4", "body"),
-                points: vec![(0.0, 1.0), (1.0, f64::NAN)],
-                label: None,
-                marker_every: 1,
-            }],
-            vec![],
-        );
-        assert!(matches!(render(&p).unwrap(), Rendered::NoData(_)));
-    }
-}
+#[path = "chart_tests.rs"]
+mod tests;

@@ -1,16 +1,22 @@
-//! `index.html`: one self-contained page (README.md, "The report"): inline CSS, every plot an
-//! inline `<svg>` element, no `src` or `href` attribute at all (not even in-page anchors), no
-//! script, no network. Each case is a `<section class="case" data-case=...>` whose parts carry
-//! `data-section` names (`narrative`, `work-precision`, `convergence`, `timeseries`,
-//! `failures`, `largest-step`, `matrix`, ...) so that `render_check` (and a CI browser step)
-//! can find them; each figure is a `<figure data-plot=...>` holding an `<svg>` or a
-//! `<p class="nodata">`. Every case section repeats the environment line (commit, rustc, CPU,
-//! OS, date).
+//! `index.html`: one self-contained page (README.md, "The report"): inline CSS, every plot an inline `<svg>` element
+//! with its legend as HTML beside it (`legend`; the rows reflow under the plot on a narrow
+//! screen), no `src` attribute and no `href` but in-page anchors, no network. One small inline
+//! script (`script::SCRIPT`) sorts the heat maps by a clicked column and, only when the URL
+//! hash is `#selftest`, writes the layout facts the CI browser check reads; the page reads the
+//! same without it. Each case is a `<section class="case" data-case=...>` whose parts carry
+//! `data-section` names (`narrative`, `heatmaps`, `work-precision`, `convergence`,
+//! `timeseries`, `failures`, `largest-step`, `matrix`, ...) so that `render_check` (and a CI
+//! browser step) can find them; each figure is a `<figure data-plot=...>` holding an `<svg
+//! data-lines=N>` (N: its series, at most `select::MAX_LINES`) or a `<p class="nodata">` (no
+//! data, or one sentence in place of a plot at round-off). Every case section repeats the
+//! environment line (commit, rustc, CPU, OS, date). Running text is escaped and its
+//! `code` spans become `<code>` (`prose`): no literal markdown reaches the page.
 //!
 //! `render_check` is a small tag tokenizer (not a full HTML parser): it reads start tags and
 //! their attributes (quoted or not), skips comments, and reports external references,
-//! scripts and embedded resources, `url(`/`@import` in CSS, and missing sections.
-use super::chart::Rendered;
+//! scripts with a source and embedded resources, event-handler attributes, `url(`/`@import`
+//! in CSS, and missing sections.
+use super::chart::{Entry, Rendered};
 use super::stability::StabilitySection;
 use super::tables::{Table, Tone};
 use super::{CaseSection, Figure, Page};
@@ -45,13 +51,28 @@ pub fn esc(s: &str) -> String {
 const CSS: &str = "
 body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:0 auto;max-width:1880px;
  padding:0 16px 40px;color:#222;line-height:1.4}
-h1{margin:18px 0 4px}h2{margin:28px 0 4px;border-bottom:2px solid #ccc}h3{margin:18px 0 6px}
-.env{font-size:13px;color:#555;font-family:ui-monospace,monospace;margin:4px 0 10px}
-.key{font-size:14px;background:#f6f6f6;padding:8px 12px;border-radius:4px}
-.figs{display:grid;grid-template-columns:repeat(auto-fill,minmax(880px,1fr));gap:0 28px}
-figure{margin:14px 0 22px}figure svg{display:block;max-width:100%;height:auto}
+h1{margin:12px 0 2px;font-size:26px}h2{margin:28px 0 4px;border-bottom:2px solid #ccc}
+h3{margin:18px 0 6px}
+.env{font-size:12px;color:#555;font-family:ui-monospace,monospace;margin:2px 0 6px}
+.key{font-size:13px;background:#f6f6f6;padding:6px 10px;border-radius:4px;margin:4px 0}
+header p{margin:4px 0}
+code{font-family:ui-monospace,monospace;font-size:92%;background:#f2f2f2;padding:0 2px}
+.figs{display:grid;grid-template-columns:repeat(auto-fill,minmax(min(100%,640px),1fr));
+ gap:0 24px}
+figure{margin:12px 0 20px;min-width:0}
+.plotrow{display:flex;flex-wrap:wrap;align-items:flex-start;gap:4px 10px}
+.plot{flex:1 1 400px;max-width:560px;min-width:0}
+.plot svg{display:block;width:100%;height:auto}
+ul.legend{flex:1 1 150px;list-style:none;margin:6px 0 0;padding:0;font-size:12px;
+ display:flex;flex-wrap:wrap;flex-direction:column;align-content:flex-start;gap:1px 12px}
+ul.legend li{white-space:nowrap;display:flex;align-items:center;gap:4px}
+ul.legend li.lh{font-weight:600;color:#444;margin-top:4px}
+.ls{display:inline-block;width:26px;border-top:2px solid;height:0}
+.ls.dash{border-top-style:dashed}.ls.none{border-top-color:transparent}
+.lm{display:inline-block;width:12px;text-align:center;font-size:12px;line-height:12px}
 figcaption{font-size:13px;color:#444;max-width:900px}
-.nodata{width:860px;padding:16px 20px;border:1px dashed #bbb;color:#777;background:#fafafa}
+.nodata{max-width:860px;padding:16px 20px;border:1px dashed #bbb;color:#777;background:#fafafa}
+.roundoff{color:#333;background:#f4f8fb;border-style:solid;border-color:#c9d8ea}
 details{margin:8px 0}summary{cursor:pointer;font-weight:600;margin:6px 0}
 .tablewrap{overflow-x:auto;max-width:100%}
 table{border-collapse:collapse;font-size:12px;margin:6px 0 14px}
@@ -63,22 +84,105 @@ td.pass{background:#d4efd4}td.fail{background:#f6c8c8;font-weight:600}td.neutral
 .scene{border-left:3px solid #ddd;padding-left:12px}
 .stability{border-left:3px solid #c9d8ea;padding-left:12px}
 td[title]{text-decoration:underline dotted #999;cursor:help}
+table.heatmap td{text-align:right;font-variant-numeric:tabular-nums}
+table.heatmap td:nth-child(-n+4){text-align:left;background:#fff}
+table.heatmap td.dk{color:#fff}
+table.heatmap th button{font:inherit;font-weight:600;border:0;background:none;padding:0;
+ cursor:pointer;text-decoration:underline dotted #888}
+td.hfail,.ramp .hfail{background:repeating-linear-gradient(45deg,#f4c2c2 0 4px,#fff 4px 8px);
+ color:#8b0000;font-weight:600}
+td.hna,.ramp .hna{background:#e4e4e4;color:#777}
+td.gp{box-shadow:inset 0 0 0 2px #1b7f3b}td.gf{box-shadow:inset 0 0 0 3px #000;font-weight:700}
+.ramp{font-size:12px;display:flex;flex-wrap:wrap;align-items:center;gap:0;margin:2px 0}
+.ramp span{display:inline-block;width:22px;height:12px;border:0}
+.ramp .hfail,.ramp .hna{width:auto;height:auto;padding:0 4px;margin:0 4px 0 12px}
+section.advice{overflow-x:auto}
+.heat .tablewrap{max-height:560px;overflow:auto;border:1px solid #ddd}
+.heat table{margin:0}
+table.advice{margin:4px 0}table.advice td,table.advice th{padding:1px 6px}
+section.advice h2{margin:10px 0 2px}section.advice p{margin:2px 0;font-size:13px}
 ";
 
 fn env_p(env: &str) -> String {
     format!("<p class=\"env\">{}</p>\n", esc(env))
 }
 
+/// Running text for the page: escaped, with its `code` spans as `<code>` elements and any
+/// `**` dropped (the same text is markdown in `summary.md`).
+pub fn prose(s: &str) -> String {
+    let e = esc(&s.replace("**", ""));
+    let mut out = String::with_capacity(e.len());
+    let mut open = false;
+    for (i, part) in e.split('`').enumerate() {
+        if i > 0 {
+            out.push_str(if open { "</code>" } else { "<code>" });
+            open = !open;
+        }
+        out.push_str(part);
+    }
+    if open {
+        out.push_str("</code>");
+    }
+    out
+}
+
+/// The legend rows of a plot as an HTML list (the samples drawn with CSS borders and the
+/// markers' glyphs, `style::glyph`).
+pub fn legend(entries: &[Entry]) -> String {
+    let mut s = String::from("<ul class=\"legend\">");
+    for e in entries {
+        match e {
+            Entry::Heading(t) => s.push_str(&format!("<li class=\"lh\">{}</li>", esc(t))),
+            Entry::Sample {
+                colour,
+                dashed,
+                line,
+                marker,
+                text,
+            } => {
+                let hex = super::style::hex(*colour);
+                let sample = match (line, dashed) {
+                    (false, _) => "<span class=\"ls none\"></span>".to_string(),
+                    (true, dashed) => format!(
+                        "<span class=\"ls{}\" style=\"border-top-color:{hex}\"></span>",
+                        if *dashed { " dash" } else { "" }
+                    ),
+                };
+                let glyph = marker.map(super::style::glyph).unwrap_or(' ');
+                s.push_str(&format!(
+                    "<li>{sample}<span class=\"lm\" style=\"color:{hex}\">{glyph}</span>{}</li>",
+                    esc(text)
+                ));
+            }
+        }
+    }
+    s.push_str("</ul>");
+    s
+}
+
+/// An inline SVG with its line count as `data-lines` on the root element.
+fn with_lines(svg: &str, lines: usize) -> String {
+    match svg.strip_prefix("<svg ") {
+        Some(rest) => format!("<svg data-lines=\"{lines}\" {rest}"),
+        None => svg.to_string(),
+    }
+}
+
 fn figure(f: &Figure) -> String {
     let body = match &f.body {
-        Rendered::Svg(s) => s.clone(),
+        Rendered::Svg(d) => format!(
+            "<div class=\"plotrow\">\n<div class=\"plot\">{}</div>\n{}\n</div>",
+            with_lines(&d.inline, d.lines),
+            legend(&d.legend)
+        ),
         Rendered::NoData(why) => format!("<p class=\"nodata\">{}</p>", esc(why)),
+        Rendered::Note(why) => format!("<p class=\"nodata roundoff\">{}</p>", esc(why)),
     };
     format!(
         "<figure data-plot=\"{}\">\n{body}\n<figcaption><b>{}</b>. {}</figcaption>\n</figure>\n",
         esc(&f.kind),
         esc(&f.title),
-        esc(&f.caption)
+        prose(&f.caption)
     )
 }
 
@@ -97,7 +201,7 @@ pub fn table(t: &Table, open_below: usize) -> String {
         "<div data-section=\"{}\">\n<h3>{}</h3>\n<p>{}</p>\n",
         t.kind,
         esc(&t.title),
-        esc(&t.note)
+        prose(&t.note)
     );
     if t.rows.is_empty() {
         s.push_str("<p class=\"nodata\">no rows</p>\n</div>\n");
@@ -165,7 +269,7 @@ fn stability_part(st: &StabilitySection) -> String {
     s.push_str(&env_p(&st.env_line));
     s.push_str("<ul class=\"narrative\">\n");
     for sentence in &st.text {
-        s.push_str(&format!("<li>{}</li>\n", esc(sentence)));
+        s.push_str(&format!("<li>{}</li>\n", prose(sentence)));
     }
     s.push_str("</ul>\n");
     for t in st.steps.iter().filter(|t| t.open) {
@@ -237,11 +341,18 @@ fn case_section(c: &CaseSection, env: &str) -> String {
         "<div data-section=\"narrative\" class=\"narrative\">\n<h3>What this shows</h3>\n<ul>\n",
     );
     for sentence in &c.narrative {
-        s.push_str(&format!("<li>{}</li>\n", esc(sentence)));
+        s.push_str(&format!("<li>{}</li>\n", prose(sentence)));
     }
     s.push_str("</ul>\n</div>\n");
     if let Some(g) = &c.gates {
         s.push_str(&table(g, 40));
+    }
+    if !c.scenes.is_empty() {
+        s.push_str("<div data-section=\"heatmaps\">\n");
+        for sc in &c.scenes {
+            s.push_str(&super::heatmap::html(&sc.heat));
+        }
+        s.push_str("</div>\n");
     }
     if !c.across.is_empty() {
         s.push_str(&figures("across-scenes", "Across scenes", &c.across));
@@ -253,7 +364,7 @@ fn case_section(c: &CaseSection, env: &str) -> String {
             if i == 0 { " open" } else { "" },
             esc(&sc.name),
             sc.work_precision.len() + sc.convergence.len() + sc.timeseries.len(),
-            sc.matrix.rows.len()
+            sc.variants
         ));
         s.push_str(&figures(
             "work-precision",
@@ -301,7 +412,7 @@ pub fn render(page: &Page) -> String {
     s.push_str(CSS);
     s.push_str("</style>\n</head>\n<body>\n<header>\n<h1>mbdbench report</h1>\n");
     s.push_str(&env_p(&page.env_line));
-    s.push_str(&format!("<p class=\"key\">{}</p>\n", esc(&page.key_text)));
+    s.push_str(&format!("<p class=\"key\">{}</p>\n", prose(&page.key_text)));
     if let Some(g) = &page.gate_summary {
         s.push_str(&format!(
             "<p class=\"gates\"><b>Gates:</b> {}.",
@@ -330,7 +441,9 @@ pub fn render(page: &Page) -> String {
     for c in &page.cases {
         s.push_str(&case_section(c, &page.env_line));
     }
-    s.push_str("</body>\n</html>\n");
+    s.push_str("<script>");
+    s.push_str(super::script::SCRIPT);
+    s.push_str("</script>\n</body>\n</html>\n");
     s
 }
 
@@ -439,10 +552,12 @@ pub fn render_check(html: &str) -> Vec<String> {
         "background",
         "data",
     ];
-    const RESOURCE_TAGS: [&str; 9] = [
-        "script", "link", "iframe", "object", "embed", "img", "base", "image", "use",
+    const RESOURCE_TAGS: [&str; 8] = [
+        "link", "iframe", "object", "embed", "img", "base", "image", "use",
     ];
     for t in &tags {
+        // An inline script runs the page's own code; one with a source fetches it (its `src`
+        // is reported below).
         if RESOURCE_TAGS.contains(&t.name.as_str()) {
             problems.push(format!(
                 "<{}> element (script or external resource)",
@@ -480,12 +595,16 @@ pub fn render_check(html: &str) -> Vec<String> {
     }
     // Sections per case, and figure contents.
     let mut cases: Vec<(String, Vec<String>)> = vec![];
+    // A figure holds an <svg> or a no-data note before its caption.
     let mut pending_figure: Option<String> = None;
     for t in &tags {
-        if let Some(p) = pending_figure.take() {
+        if pending_figure.is_some() {
             let ok = t.name == "svg"
                 || (t.name == "p" && t.attr("class").is_some_and(|c| c.contains("nodata")));
-            if !ok {
+            if ok {
+                pending_figure = None;
+            } else if t.name == "figcaption" || t.name == "figure" {
+                let p = pending_figure.take().unwrap_or_default();
                 problems.push(format!(
                     "figure {p} has neither an <svg> nor a no-data note"
                 ));
@@ -544,7 +663,7 @@ mod tests {
     #[test]
     fn finds_external_refs() {
         let bad = "<p class=\"env\">x</p><a href=\"#x\">a</a><a href=\"https://e.org\">b</a>\
-                   <img src=\"a.png\"><script></script>\
+                   <img src=\"a.png\"><script src=\"s.js\"></script><script>1</script>\
                    <svg xmlns=\"http://www.w3.org/2000/svg\"><image xlink:href=\"b.png\"/></svg>\
                    <div style=\"background:url(c.png)\"></div>";
         let p = render_check(bad);
@@ -552,7 +671,7 @@ mod tests {
         for want in [
             "href=\"https://e.org\"",
             "src=\"a.png\"",
-            "<script>",
+            "<script> has a src=\"s.js\"",
             "xlink:href",
             "url(",
         ] {
@@ -560,6 +679,8 @@ mod tests {
         }
         assert!(!joined.contains("xmlns"), "{joined}");
         assert!(!joined.contains("\"#x\""), "{joined}");
+        // The inline script is not a problem: exactly one script is reported, the sourced one.
+        assert_eq!(joined.matches("<script>").count(), 1, "{joined}");
     }
 
     /// A case without its sections, and a figure without content, are reported.

@@ -1,22 +1,27 @@
-//! The report (README.md, "The report"): from a summary, its series files, the case files and
-//! optionally the gate's rows, writes `out/index.html` (one self-contained page, every plot an
-//! inline SVG, no external `src`/`href`, no script), `out/summary.md` (the same text and
-//! tables for a CI log or PR comment) and every plot as `out/svg/<case>/[<scene>/]<plot>.svg`.
+//! The report (README.md, "The report"): from a summary, its series files, the case files
+//! and optionally the gate's rows, writes `out/index.html` (one self-contained page, every
+//! plot an inline SVG with an HTML legend, no external `src`/`href`, one small inline script:
+//! `script`), `out/summary.md` (the answer for a CI log or PR comment: the gate verdict, the
+//! recommendation, a line per case) and every plot with its own legend as
+//! `out/svg/<case>/[<scene>/]<plot>.svg`.
 //!
 //! The figures are the case's family's (`problem::figures`: which selections of variants each
 //! kind of plot draws, how to read the markers, the chart group the narrative contrasts); this
 //! module composes them and names no chart or integrator itself.
 //!
-//! Per case: a "what this shows" paragraph computed from the numbers (`narrative`); for a case
-//! with several scenes, the family's measures across scenes (`scenes`); per
-//! scene, work-precision (error vs wall time and vs RHS evaluations, `work_precision`),
-//! convergence with the fitted orders (`convergence`), energy drift and constraint residual
-//! over time (`timeseries`), and the variants x metrics matrix; then the failure table, the
+//! Per case: a "what this shows" paragraph computed from the numbers (`narrative`); a heat map
+//! of variants x metrics per scene, open (`heatmap`); for a case with several scenes, the
+//! family's measures across scenes (`scenes`); per scene, work-precision (error vs wall time
+//! and vs RHS evaluations, `work_precision`), convergence with the fitted orders and their fit
+//! quality (`convergence`), energy drift and constraint residual over time (`timeseries`),
+//! each selection in panels of at most eight lines (`select`), and the full variants x
+//! metrics matrix; then the failure table, the
 //! largest completed ladder step per variant, the stability study's part when a
 //! `stability.json` is given (`stability`: step-search tables, stiffness-ladder and
 //! long-horizon plots), and the n/a combinations (`tables`). Colour =
 //! integrator, marker = parameterization, dashed = the family's second formulation in every plot
-//! (`style`); log axes carry explicit decade ticks with both end labels (`axes`).
+//! (`style`; colours that share a panel differ by CIEDE2000 >= 20, `colour`); log axes carry
+//! explicit decade ticks with both end labels (`axes`).
 //!
 //! Robustness: a missing or unreadable series file, an `n/a` record, a null metric or a case
 //! absent from `cases` never stops the report: the affected plot or cell says "no data" (or
@@ -26,12 +31,15 @@
 pub mod advice;
 pub mod axes;
 pub mod chart;
+pub mod colour;
 pub mod convergence;
 pub mod data;
+pub mod heatmap;
 pub mod html;
 pub mod markdown;
 pub mod narrative;
 pub mod scenes;
+pub mod script;
 pub mod select;
 pub mod stability;
 pub mod style;
@@ -81,6 +89,10 @@ pub struct SceneSection {
     pub convergence: Vec<Figure>,
     pub timeseries: Vec<Figure>,
     pub matrix: tables::Table,
+    /// The matrix as a heat map (shown open on the page).
+    pub heat: heatmap::HeatMap,
+    /// Variants of the scene (not table rows: a gated run adds a row).
+    pub variants: usize,
 }
 
 /// One case of the page.
@@ -273,6 +285,7 @@ pub fn build_page(
     let sections = views
         .iter()
         .map(|cv| {
+            let columns = heatmap::columns(cv, gate_rows);
             let scenes = cv
                 .scenes
                 .iter()
@@ -296,6 +309,8 @@ pub fn build_page(
                         .map(figure)
                         .collect(),
                     matrix: tables::matrix(cv, sv, gate_rows),
+                    heat: heatmap::heatmap(cv, sv, &columns, gate_rows),
+                    variants: sv.variants.len(),
                 })
                 .collect();
             CaseSection {
@@ -392,9 +407,10 @@ pub fn write_report(
         }));
         let figs = figs.chain(c.stability.iter().flat_map(|st| st.figures()));
         for f in figs {
-            let chart::Rendered::Svg(svg) = &f.body else {
+            let chart::Rendered::Svg(drawn) = &f.body else {
                 continue;
             };
+            let svg = &drawn.file;
             let mut rel = format!("svg/{}", safe(&c.name));
             for part in f.kind.split('/') {
                 rel.push('/');
@@ -422,9 +438,14 @@ mod tests {
     use super::*;
     use crate::gate::{GateRow, Verdict};
 
-    /// Plots per scene (6 work-precision, 2 convergence, 4 time series) and across scenes.
-    const PER_SCENE: usize = 12;
-    const ACROSS: usize = 3;
+    /// The plots the page holds for a case (each scene's and the across-scene ones).
+    fn plots_of(c: &CaseSection) -> usize {
+        c.across.len()
+            + c.scenes
+                .iter()
+                .map(|s| s.work_precision.len() + s.convergence.len() + s.timeseries.len())
+                .sum::<usize>()
+    }
 
     fn case_html<'a>(html: &'a str, case: &str) -> &'a str {
         let start = html
@@ -458,16 +479,75 @@ mod tests {
         }
         assert!(!html.contains(" src=") && !html.contains(" href="));
         let sec = case_html(&html, fixture::CASE);
-        let expected = fixture::SCENES.len() * PER_SCENE + ACROSS;
-        assert_eq!(sec.matches("<svg").count(), expected);
-        assert_eq!(sec.matches("<figure").count(), expected);
-        assert_eq!(files.svgs.len(), expected);
-        assert!(files.svgs.iter().all(|p| p.is_file()));
+        let page = build_page(&s, &dir.join("series"), &cases, None, None);
+        let expected = plots_of(&page.cases[0]);
+        // Plots at round-off are one sentence instead of an SVG.
+        let c = &page.cases[0];
+        let bodies: Vec<&chart::Rendered> = c
+            .across
+            .iter()
+            .chain(c.scenes.iter().flat_map(|s| {
+                s.work_precision
+                    .iter()
+                    .chain(&s.convergence)
+                    .chain(&s.timeseries)
+            }))
+            .map(|f| &f.body)
+            .collect();
+        let svgs = bodies
+            .iter()
+            .filter(|b| matches!(b, chart::Rendered::Svg(_)))
+            .count();
+        let notes = bodies
+            .iter()
+            .filter(|b| matches!(b, chart::Rendered::Note(_)))
+            .count();
         assert!(
-            out.join("svg/nine_spring/large/wp_wall_rk4.svg").is_file(),
-            "{:?}",
-            files.svgs
+            notes > 0,
+            "the fixture's constraint residuals are at round-off"
         );
+        assert_eq!(sec.matches("<p class=\"nodata roundoff\">").count(), notes);
+        assert_eq!(sec.matches("<figure").count(), expected);
+        assert_eq!(sec.matches("<svg").count(), svgs);
+        assert_eq!(sec.matches("<svg data-lines=\"").count(), svgs);
+        assert_eq!(files.svgs.len(), svgs);
+        assert!(files.svgs.iter().all(|p| p.is_file()));
+        // rk4 on so3 is in the Lie-group charts' panel, lgvi in the geometric methods' one.
+        for f in [
+            "wp_wall_rk4_group",
+            "wp_rhs_so3_geometric",
+            "conv_so3_explicit",
+        ] {
+            assert!(
+                out.join(format!("svg/nine_spring/large/{f}.svg")).is_file(),
+                "{f}: {:?}",
+                files.svgs
+            );
+        }
+        // No panel draws more than MAX_LINES lines, and the page says how many it draws.
+        let figs = page.cases[0].scenes.iter().flat_map(|s| {
+            s.work_precision
+                .iter()
+                .chain(&s.convergence)
+                .chain(&s.timeseries)
+        });
+        for f in figs {
+            if let chart::Rendered::Svg(d) = &f.body {
+                assert!(d.lines <= select::MAX_LINES, "{}: {}", f.kind, d.lines);
+                assert!(sec.contains(&format!("<svg data-lines=\"{}\"", d.lines)));
+            }
+        }
+        // The heat maps are open (outside any <details>), one per scene.
+        let heat = sec.find("data-section=\"heatmaps\"").expect("heat maps");
+        assert!(!sec[..heat].contains("<details"));
+        assert_eq!(
+            sec.matches("<table class=\"heatmap\">").count(),
+            fixture::SCENES.len()
+        );
+        // No literal markdown reaches the page.
+        for md in ["**", "`", "]("] {
+            assert!(!html.contains(md), "{md} in the page");
+        }
         for kind in html::REQUIRED_SECTIONS
             .iter()
             .chain(&["na", "across-scenes"])
@@ -520,15 +600,21 @@ mod tests {
         let html = std::fs::read_to_string(&files.index_html).unwrap();
         assert_eq!(render_check(&html), Vec::<String>::new());
         let sec = case_html(&html, fixture::CASE);
-        let timeseries = fixture::SCENES.len() * 4;
-        assert_eq!(
-            sec.matches("<figure").count(),
-            fixture::SCENES.len() * PER_SCENE + ACROSS
+        let page = build_page(&s, &dir.join("nowhere"), &[], None, None);
+        let timeseries: usize = page.cases[0]
+            .scenes
+            .iter()
+            .map(|s| s.timeseries.len())
+            .sum();
+        assert!(
+            timeseries >= 2 * fixture::SCENES.len(),
+            "energy and constraint per scene"
         );
+        assert_eq!(sec.matches("<figure").count(), plots_of(&page.cases[0]));
         assert_eq!(sec.matches("<p class=\"nodata\">").count(), timeseries);
         assert_eq!(
             sec.matches("<svg").count(),
-            fixture::SCENES.len() * PER_SCENE + ACROSS - timeseries
+            plots_of(&page.cases[0]) - timeseries
         );
         assert!(sec.contains("no series file"));
         assert!(sec.contains("written on SO(3) x R^3 (chart so3) only"));
@@ -536,11 +622,40 @@ mod tests {
         fixture::write_series(&dir.join("series"), &s, |r| r.key.scene == "large");
         let files = write_report(&s, &dir.join("series"), &[], None, None, None, &out).unwrap();
         let html = std::fs::read_to_string(&files.index_html).unwrap();
+        let page = build_page(&s, &dir.join("series"), &[], None, None);
+        // The predicate names the records whose series are left out: those of `large`.
+        let large = page.cases[0]
+            .scenes
+            .iter()
+            .find(|s| s.name == "large")
+            .unwrap();
+        let nodata = |f: &Figure| matches!(f.body, chart::Rendered::NoData(_));
+        assert!(
+            large.timeseries.iter().all(nodata),
+            "{:?}",
+            large
+                .timeseries
+                .iter()
+                .map(|f| (&f.kind, &f.body))
+                .filter(|(_, b)| !matches!(b, chart::Rendered::Svg(_)))
+                .collect::<Vec<_>>()
+        );
+        let all_nodata = page.cases[0]
+            .scenes
+            .iter()
+            .flat_map(|s| {
+                s.work_precision
+                    .iter()
+                    .chain(&s.convergence)
+                    .chain(&s.timeseries)
+            })
+            .filter(|f| nodata(f))
+            .count();
         assert_eq!(
             case_html(&html, fixture::CASE)
                 .matches("<p class=\"nodata\">")
                 .count(),
-            4
+            all_nodata
         );
         // An empty summary.
         let mut empty = s.clone();

@@ -317,15 +317,24 @@ fn euler_sentences(cv: &CaseView) -> Vec<String> {
     out
 }
 
-/// Median observed order per integrator over the case's fits (fits without an order are
-/// counted apart).
-pub fn median_orders(cv: &CaseView) -> (Vec<(String, f64, usize)>, usize, usize) {
+/// Whether a fit's local slopes agree (`metrics::order::ASYMPTOTIC_SPREAD`; a fit with
+/// fewer than two local slopes has nothing to disagree with).
+pub fn asymptotic(f: &crate::summary::FitRecord) -> bool {
+    crate::metrics::order::slope_spread(&f.points)
+        .is_none_or(|(spread, _, _)| spread <= crate::metrics::order::ASYMPTOTIC_SPREAD)
+}
+
+/// Median observed order per integrator over the case's asymptotic fits (fits without an
+/// order, and fits that are not asymptotic, are counted apart: `without`,
+/// `not_asymptotic`).
+pub fn median_orders(cv: &CaseView) -> (Vec<(String, f64, usize)>, usize, usize, usize) {
     let mut by: BTreeMap<VariantKey, Vec<f64>> = BTreeMap::new();
-    let (mut with, mut without) = (0, 0);
+    let (mut with, mut without, mut not_asymptotic) = (0, 0, 0);
     for s in &cv.scenes {
         for v in &s.variants {
             let Some(f) = v.fit else { continue };
             match f.order {
+                Some(p) if p.is_finite() && !asymptotic(f) => not_asymptotic += 1,
                 Some(p) if p.is_finite() => {
                     with += 1;
                     // Keyed by integrator only (param/formulation blanked) to keep registry order.
@@ -353,17 +362,28 @@ pub fn median_orders(cv: &CaseView) -> (Vec<(String, f64, usize)>, usize, usize)
             (k.integrator, med, n)
         })
         .collect();
-    (list, with, without)
+    (list, with, without, not_asymptotic)
 }
 
 fn order_sentence(cv: &CaseView) -> Option<String> {
-    let (list, with, without) = median_orders(cv);
-    if with + without == 0 {
+    let (list, with, without, not_asymptotic) = median_orders(cv);
+    let total = with + without + not_asymptotic;
+    if total == 0 {
         return None;
     }
+    let apart = if not_asymptotic > 0 {
+        format!(
+            "; {not_asymptotic} of {total} fits were not asymptotic (local slopes differing \
+             by more than {}), their slopes are not counted as orders",
+            crate::metrics::order::ASYMPTOTIC_SPREAD
+        )
+    } else {
+        String::new()
+    };
     if list.is_empty() {
         return Some(format!(
-            "None of the {without} order fits had 3 ladder points in range (no observed order)."
+            "None of the {total} order fits gave an observed order: {without} had fewer than 3 \
+             ladder points in range{apart}."
         ));
     }
     let parts: Vec<String> = list
@@ -372,10 +392,9 @@ fn order_sentence(cv: &CaseView) -> Option<String> {
         .collect();
     Some(format!(
         "Observed order of {} (median over variants and scenes, number of fits): {}; {without} \
-         of {} fits had fewer than 3 ladder points in range.",
+         of {total} fits had fewer than 3 ladder points in range{apart}.",
         cv.primary,
         parts.join(", "),
-        with + without
     ))
 }
 

@@ -11,15 +11,16 @@
 //! every drawn variant ran in every scene, the middle one (the lower median of the sorted
 //! list; e.g. 5e-3 of {1e-2, 5e-3, 2.5e-3}, 1e-8 of {1e-4, ..., 1e-12}); when no value is
 //! common to all, each variant uses the middle of its own common values (the caption says
-//! which). Points of one scene are spread horizontally by parameterization so markers do not
-//! hide each other.
+//! which). Points of one scene are spread horizontally, one slot per variant of the panel in
+//! registry order (so a chart's two formulations sit side by side, body left), so markers do
+//! not hide each other; they are dots, never joined (the scenes are categories). Each selection is
+//! drawn in its panels (`select::panels`), at most eight variants each.
 use std::collections::BTreeSet;
 
 use super::chart::{FailMark, Legend, Line, Plot};
 use super::data::{self, CaseView, VariantKey};
-use super::select::{Admits, Selection};
+use super::select::{Admits, Panel, panels};
 use crate::problem::figures::Admit;
-use crate::problem::{Axis, axis_names};
 use crate::summary::{Record, Status};
 
 pub use crate::problem::figures::Measure;
@@ -33,7 +34,9 @@ pub fn plots(cv: &CaseView, footer: &str) -> Vec<Plot> {
         .figures
         .across_scenes
         .iter()
-        .map(|&(sel, m)| plot(cv, sel, m, footer))
+        .flat_map(|&(sel, m)| panels(sel, cv.family).into_iter().map(move |p| (p, m)))
+        .filter(|(p, _)| !keys(cv, p).is_empty())
+        .map(|(p, m)| plot(cv, &p, m, footer))
         .collect()
 }
 
@@ -53,7 +56,7 @@ fn middle(set: &BTreeSet<u64>) -> Option<f64> {
 }
 
 /// The variants of a selection present in the case, in registry order.
-fn keys(cv: &CaseView, sel: Selection) -> Vec<VariantKey> {
+fn keys(cv: &CaseView, sel: &Panel) -> Vec<VariantKey> {
     let mut ks: Vec<VariantKey> = cv
         .scenes
         .iter()
@@ -66,7 +69,7 @@ fn keys(cv: &CaseView, sel: Selection) -> Vec<VariantKey> {
 }
 
 /// The ladder value a variant is drawn at, and whether it is the plot-wide common value.
-pub fn chosen_values(cv: &CaseView, sel: Selection) -> (Vec<(VariantKey, Option<f64>)>, bool) {
+pub fn chosen_values(cv: &CaseView, sel: &Panel) -> (Vec<(VariantKey, Option<f64>)>, bool) {
     let ks = keys(cv, sel);
     let per_variant: Vec<(VariantKey, BTreeSet<u64>)> = ks
         .into_iter()
@@ -110,21 +113,17 @@ pub fn chosen_values(cv: &CaseView, sel: Selection) -> (Vec<(VariantKey, Option<
 }
 
 /// One across-scene plot.
-pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
+pub fn plot(cv: &CaseView, sel: &Panel, m: Measure, footer: &str) -> Plot {
     let names: Vec<String> = cv.scenes.iter().map(|s| s.name.clone()).collect();
     let (chosen, common) = chosen_values(cv, sel);
-    let params = axis_names(Axis::Param);
-    let n_params = params.len() as f64;
+    let n_keys = chosen.len().max(1) as f64;
     let mut lines = vec![];
     let mut fails = vec![];
-    for (k, value) in &chosen {
+    for (idx, (k, value)) in chosen.iter().enumerate() {
         let Some(value) = value else { continue };
-        let p_idx = params
-            .iter()
-            .position(|p| *p == k.param)
-            .unwrap_or(params.len()) as f64;
-        // Spread over 70% of a category's width, by parameterization.
-        let jitter = 0.7 * (p_idx - 0.5 * (n_params - 1.0)) / n_params;
+        // Spread over 70% of a category's width, one slot per variant of the panel (in
+        // registry order: a chart's formulations side by side, body left).
+        let jitter = 0.7 * (idx as f64 - 0.5 * (n_keys - 1.0)) / n_keys;
         let mut points = vec![];
         for (i, s) in cv.scenes.iter().enumerate() {
             let Some(r) = s
@@ -164,7 +163,7 @@ pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
         .collect();
     vals.sort();
     vals.dedup();
-    let step = if sel.admit == Admit::Adaptive {
+    let step = if sel.sel.admit == Admit::Adaptive {
         "tol"
     } else {
         "dt"
@@ -194,7 +193,12 @@ pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
         ),
     };
     Plot {
-        id: id.into(),
+        id: if sel.id == sel.sel.id {
+            id.to_string()
+        } else {
+            format!("{id}_{}", sel.id)
+        },
+        round_off: None,
         title: format!("{}: {} across scenes ({})", cv.name, y_label, sel.short),
         x_label: "scene".into(),
         y_label,
@@ -204,7 +208,8 @@ pub fn plot(cv: &CaseView, sel: Selection, m: Measure, footer: &str) -> Plot {
         fails,
         legend: Legend::Factored,
         caption: format!(
-            "Across scenes: {what}, {at}. {} Marks in the red band: runs that failed.",
+            "Across scenes: {what}, {at}. {} One dot per variant and scene (scenes are \
+             categories: the dots are not joined). Marks in the red band: runs that failed.",
             sel.describe
         ),
         footer: footer.into(),

@@ -10,12 +10,19 @@
 //! `problem::axis_names` (every family's integrators in table order; a categorical palette
 //! chosen for contrast on white), markers its parameterization order. A name past the palette
 //! gets a colour from a hash of its name: stable, but possibly shared.
+//!
+//! Colour stays = integrator everywhere (a variant looks the same in every panel); the palette
+//! is chosen so that any two integrators that can share a panel (a panel of a family's
+//! selections, two methods of one kind, the quick stability study's three) differ by
+//! CIEDE2000 >= 20 (`colour::delta_e`, tested below). The Kahan twins, which share panels
+//! only with their own kind in the long-horizon plots, got dark teal, dark brown and dark sea
+//! green (their light tints of the base colours were 13 to 19 apart from them).
 use plotters::style::RGBColor;
 
 use crate::problem::{Axis, axis_position};
 
 /// The integrator colours, in `axis_names(Axis::Integrator)` order.
-const INTEGRATOR_COLOURS: [RGBColor; 15] = [
+const INTEGRATOR_COLOURS: [RGBColor; 16] = [
     RGBColor(127, 127, 127), // euler: grey
     RGBColor(31, 119, 180),  // rk4: blue
     RGBColor(255, 127, 14),  // dopri5: orange
@@ -28,9 +35,10 @@ const INTEGRATOR_COLOURS: [RGBColor; 15] = [
     RGBColor(188, 189, 34),  // lgvi: olive
     RGBColor(0, 0, 0),       // simo_wong: black
     RGBColor(57, 59, 121),   // lie_gen_alpha: indigo
-    RGBColor(116, 196, 118), // implicit_midpoint_kahan: light green
-    RGBColor(158, 154, 200), // gauss6_kahan: lavender
-    RGBColor(99, 99, 99),    // simo_wong_kahan: dark grey
+    RGBColor(0, 100, 100),   // implicit_midpoint_kahan: dark teal
+    RGBColor(120, 60, 0),    // gauss6_kahan: dark brown
+    RGBColor(0, 90, 75),     // simo_wong_kahan: dark sea green
+    RGBColor(120, 105, 0),   // the next family's own method: dark olive
 ];
 
 /// Extra colours for integrators past the palette.
@@ -99,6 +107,24 @@ pub fn marker(param: &str) -> Marker {
     }
 }
 
+/// A text glyph for a marker (the page's HTML legends): the same shape, filled or hollow.
+pub fn glyph(m: Marker) -> char {
+    match m {
+        Marker::TriangleUp => '▲',
+        Marker::TriangleDown => '▼',
+        Marker::TriangleRight => '▶',
+        Marker::DiamondHollow => '◇',
+        Marker::DiamondFilled => '◆',
+        Marker::CircleHollow => '○',
+        Marker::CircleFilled => '●',
+        Marker::SquareHollow => '□',
+        Marker::SquareFilled => '■',
+        Marker::Cross => '×',
+        Marker::Plus => '+',
+        Marker::TriangleUpHollow => '△',
+    }
+}
+
 /// Whether a formulation's lines are dashed: the second (fourth, ...) formulation of its
 /// family's axis is, the first (third, ...) and unknown ones are solid (the rigid body:
 /// `body` solid, `spatial` dashed).
@@ -121,6 +147,80 @@ pub const INK: RGBColor = RGBColor(60, 60, 60);
 mod tests {
     use super::*;
     use crate::problem::axis_names;
+
+    /// The pairs of integrators that can share a panel: those admitted together by a panel
+    /// of a family's selections, every two of one kind (the long-horizon and crowded
+    /// stability plots are split by kind, twins included), and the quick stability study's
+    /// integrators (drawn together in its ladder plots).
+    fn panel_pairs() -> Vec<(&'static str, &'static str)> {
+        use crate::problem::{FAMILIES, matrix::registered};
+        use crate::report::select::{is_twin, kind_of, panels};
+        let mut sets: Vec<Vec<&'static str>> = vec![];
+        for family in FAMILIES {
+            let f = family.figures;
+            let sels = f
+                .work_precision
+                .iter()
+                .chain(f.convergence)
+                .chain(f.timeseries.iter().map(|(_, s)| s))
+                .chain(f.across_scenes.iter().map(|(s, _)| s));
+            for &sel in sels {
+                for p in panels(sel, family) {
+                    let mut set: Vec<&'static str> = registered(family)
+                        .filter(|v| {
+                            sel.admit.admits(v.param, v.integrator, v.info.adaptive)
+                                && !is_twin(v.integrator)
+                                && p.admits_key(v.param, v.integrator, v.formulation)
+                        })
+                        .map(|v| v.integrator)
+                        .collect();
+                    set.dedup();
+                    sets.push(set);
+                }
+            }
+        }
+        for kind in crate::integrate::MethodKind::ALL {
+            sets.push(
+                axis_names(Axis::Integrator)
+                    .iter()
+                    .copied()
+                    .filter(|i| kind_of(i) == kind)
+                    .collect(),
+            );
+        }
+        sets.push(crate::stability::QUICK_INTEGRATORS.to_vec());
+        let mut pairs = vec![];
+        for set in sets {
+            for (i, a) in set.iter().enumerate() {
+                for b in &set[i + 1..] {
+                    if a != b && !pairs.contains(&(*a, *b)) && !pairs.contains(&(*b, *a)) {
+                        pairs.push((*a, *b));
+                    }
+                }
+            }
+        }
+        pairs
+    }
+
+    /// Any two integrator colours that can share a panel differ by CIEDE2000 >= 20 (clearly
+    /// distinct side by side), and every colour stands off the white background.
+    #[test]
+    fn panel_colours_are_distinguishable() {
+        use crate::report::colour::delta_e;
+        let pairs = panel_pairs();
+        assert!(pairs.len() > 10, "{pairs:?}");
+        let close: Vec<String> = pairs
+            .iter()
+            .map(|(a, b)| (a, b, delta_e(colour(a), colour(b))))
+            .filter(|(_, _, d)| *d < 20.0)
+            .map(|(a, b, d)| format!("{a}/{b}: {d:.1}"))
+            .collect();
+        assert!(close.is_empty(), "dE2000 < 20: {close:?}");
+        for i in axis_names(Axis::Integrator) {
+            let d = delta_e(colour(i), plotters::style::RGBColor(255, 255, 255));
+            assert!(d >= 20.0, "{i} on white: {d:.1}");
+        }
+    }
 
     /// Every registered integrator has its own colour and every parameterization its own marker.
     #[test]

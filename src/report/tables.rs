@@ -6,8 +6,9 @@
 //!   step, or loosest tolerance, that ran to the end; `none` when every run failed);
 //! - the matrix of a scene: one row per variant at its finest ladder point (the terminal
 //!   table's row) plus any gated run at another point; columns = the case's metrics, the
-//!   fitted order, RHS evaluations and wall time. With gate rows, a gated cell is green (pass)
-//!   or red (fail) and every other cell neutral grey; without, no colour;
+//!   fitted order (`not asymptotic` when its local slopes disagree), RHS evaluations and wall
+//!   time. With gate rows, a gated cell is green (pass) or red (fail) and every other cell
+//!   neutral grey; without, no colour (the page's heat map, `heatmap`, colours by value);
 //! - the gate rows of the case; the `n/a` combinations grouped by reason.
 use std::collections::BTreeMap;
 
@@ -226,7 +227,7 @@ fn same_value(a: Option<f64>, b: Option<f64>) -> bool {
 }
 
 /// Gate rows about a record.
-fn gates_of<'g>(r: &Record, gates: &'g [GateRow]) -> Vec<&'g GateRow> {
+pub fn gates_of<'g>(r: &Record, gates: &'g [GateRow]) -> Vec<&'g GateRow> {
     gates
         .iter()
         .filter(|g| {
@@ -256,23 +257,29 @@ fn tone(gates: Option<&[GateRow]>, matched: &[&GateRow], metric: &str) -> Tone {
     }
 }
 
+/// The runs of a variant in its scene's matrix: its finest ladder point (the terminal
+/// table's row), then every gated run at another point.
+pub fn shown<'a>(v: &data::VariantRuns<'a>, gates: Option<&[GateRow]>) -> Vec<&'a Record> {
+    let mut shown: Vec<&Record> = vec![];
+    if let Some(f) = v.finest() {
+        shown.push(f);
+    }
+    if let Some(g) = gates {
+        for r in &v.runs {
+            if !shown.iter().any(|s| std::ptr::eq(*s, *r)) && !gates_of(r, g).is_empty() {
+                shown.push(r);
+            }
+        }
+    }
+    shown
+}
+
 /// The variants x metrics matrix of a scene.
 pub fn matrix(cv: &CaseView, sv: &SceneView, gates: Option<&[GateRow]>) -> Table {
     let metrics = cv.metrics();
     let mut rows = vec![];
     for v in &sv.variants {
-        let mut shown: Vec<&Record> = vec![];
-        if let Some(f) = v.finest() {
-            shown.push(f);
-        }
-        if let Some(g) = gates {
-            for r in &v.runs {
-                if !shown.iter().any(|s| std::ptr::eq(*s, *r)) && !gates_of(r, g).is_empty() {
-                    shown.push(r);
-                }
-            }
-        }
-        for r in shown {
+        for r in shown(v, gates) {
             let matched = gates.map(|g| gates_of(r, g)).unwrap_or_default();
             let status = match (&r.status, &r.failure) {
                 (Status::Failed, Some(f)) => {
@@ -308,16 +315,23 @@ pub fn matrix(cv: &CaseView, sv: &SceneView, gates: Option<&[GateRow]>) -> Table
                     full: None,
                 });
             }
-            let order = v.fit.and_then(|f| f.order).map(|p| format!("{p:.2}"));
-            row.push(Cell {
-                text: order.unwrap_or_else(|| "-".into()),
-                tone: if gates.is_some() {
-                    Tone::Neutral
-                } else {
-                    Tone::Plain
+            // A fit whose local slopes disagree is not an order (`narrative::asymptotic`).
+            let mut order = match v.fit {
+                Some(f) if f.order.is_some() && !super::narrative::asymptotic(f) => {
+                    Cell::abridged("not asymptotic", super::convergence::fit_text(Some(f)))
+                }
+                Some(f) => match f.order {
+                    Some(p) => {
+                        Cell::abridged(format!("{p:.2}"), super::convergence::fit_text(Some(f)))
+                    }
+                    None => Cell::plain("-"),
                 },
-                full: None,
-            });
+                None => Cell::plain("-"),
+            };
+            if gates.is_some() {
+                order.tone = Tone::Neutral;
+            }
+            row.push(order);
             row.push(Cell {
                 text: r.stats.rhs_evals.to_string(),
                 tone: tone(gates, &matched, "rhs_evals"),

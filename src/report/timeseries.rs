@@ -10,23 +10,27 @@
 //! a non-symplectic one a secular drift; an additive chart without projection shows its
 //! constraint residual growing. Exact zeros (e.g. the drift at t = 0) cannot be drawn on a log
 //! axis and are left out. A variant with no completed run or no series file has no line and
-//! is named in the caption.
+//! is named in the caption. Both quantities are relative, so a plot whose every value is
+//! below `chart::ROUND_OFF` is replaced by one sentence with the bound (`Plot::round_off`).
 use std::collections::BTreeMap;
 use std::path::Path;
 
 use super::chart::{Legend, Line, Plot};
 use super::data::{self, CaseView, SceneView};
-use super::select::{Admits, Selection};
+use super::select::{Admits, Panel, panels};
 
 pub use crate::problem::figures::Quantity;
 
-/// The time-series plots of a scene: each quantity and selection the family declares.
+/// The time-series plots of a scene: each quantity and panel of each selection the family
+/// declares (panels that draw no variant of the scene are left out).
 pub fn plots(cv: &CaseView, sv: &SceneView, series_root: &Path, footer: &str) -> Vec<Plot> {
     cv.family
         .figures
         .timeseries
         .iter()
-        .map(|&(q, sel)| plot(cv, sv, series_root, q, sel, footer))
+        .flat_map(|&(q, sel)| panels(sel, cv.family).into_iter().map(move |p| (q, p)))
+        .filter(|(_, p)| sv.variants.iter().any(|v| p.admits(v)))
+        .filter_map(|(q, p)| plot(cv, sv, series_root, q, &p, footer))
         .collect()
 }
 
@@ -36,15 +40,16 @@ pub fn energy_drift(energy: &[f64], energy_scale: Option<f64>) -> Vec<f64> {
     crate::metrics::energy_drift::relative(energy, energy_scale.unwrap_or(0.0)).collect()
 }
 
-/// One time-series plot.
+/// One time-series plot; None for a constraint plot whose every variant is on a chart
+/// without a residual (a panel of minimal charts).
 pub fn plot(
     cv: &CaseView,
     sv: &SceneView,
     series_root: &Path,
     q: Quantity,
-    sel: Selection,
+    sel: &Panel,
     footer: &str,
-) -> Plot {
+) -> Option<Plot> {
     let mut lines = vec![];
     let mut steps: BTreeMap<String, Vec<String>> = BTreeMap::new();
     let mut missing: Vec<String> = vec![];
@@ -100,7 +105,7 @@ pub fn plot(
         ),
         Quantity::Constraint { what } => what.to_string(),
     };
-    caption.push_str(sel.describe);
+    caption.push_str(&sel.describe);
     caption.push_str(&format!(
         " Each variant at its coarsest completed ladder point: {}.",
         if used.is_empty() {
@@ -109,6 +114,9 @@ pub fn plot(
             used.join("; ")
         }
     ));
+    if lines.is_empty() && missing.is_empty() && !unconstrained.is_empty() {
+        return None;
+    }
     if !unconstrained.is_empty() {
         caption.push_str(&format!(
             " No residual (minimal charts): {}.",
@@ -122,7 +130,7 @@ pub fn plot(
         Quantity::Energy => ("energy", "energy drift", "|E - E0| / max(|E0|, E_scale)"),
         Quantity::Constraint { .. } => ("constraint", "constraint residual", "constraint residual"),
     };
-    Plot {
+    Some(Plot {
         id: format!("{}/{id}_{}", sv.name, sel.id),
         title: format!("{}/{}: {name} over time ({})", cv.name, sv.name, sel.short),
         x_label: "t (s)".into(),
@@ -134,7 +142,8 @@ pub fn plot(
         legend: Legend::Factored,
         caption,
         footer: footer.into(),
-    }
+        round_off: Some(format!("{name} ({})", sel.short)),
+    })
 }
 
 #[cfg(test)]

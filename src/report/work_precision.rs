@@ -11,7 +11,7 @@
 //! null primary metric (no reference) is left out.
 use super::chart::{FailMark, Legend, Line, Plot};
 use super::data::{CaseView, SceneView};
-use super::select::{Admits, Selection};
+use super::select::{Admits, Panel, panels};
 use crate::summary::{Record, Status};
 
 /// The cost axis.
@@ -42,14 +42,20 @@ impl Cost {
     }
 }
 
-/// The work-precision plots of a scene: each selection against wall time and RHS evaluations.
+/// The work-precision plots of a scene: each panel of each selection that draws something in
+/// the scene, against wall time and RHS evaluations.
 /// `timing` says how the wall times were taken (the summary's `env.timing`; None for a
 /// summary written before it was recorded).
 pub fn plots(cv: &CaseView, sv: &SceneView, footer: &str, timing: Option<&str>) -> Vec<Plot> {
     let mut out = vec![];
     for &sel in cv.family.figures.work_precision {
-        for cost in [Cost::Wall, Cost::Rhs] {
-            out.push(plot(cv, sv, sel, cost, footer, timing));
+        for panel in panels(sel, cv.family) {
+            if !sv.variants.iter().any(|v| panel.admits(v)) {
+                continue;
+            }
+            for cost in [Cost::Wall, Cost::Rhs] {
+                out.push(plot(cv, sv, &panel, cost, footer, timing));
+            }
         }
     }
     out
@@ -72,7 +78,7 @@ fn timing_clause(timing: Option<&str>) -> String {
 pub fn plot(
     cv: &CaseView,
     sv: &SceneView,
-    sel: Selection,
+    sel: &Panel,
     cost: Cost,
     footer: &str,
     timing: Option<&str>,
@@ -112,6 +118,7 @@ pub fn plot(
     };
     Plot {
         id: format!("{}/wp_{}_{}", sv.name, cost.id(), sel.id),
+        round_off: None,
         title: format!(
             "{}/{}: {} vs {} ({})",
             cv.name,

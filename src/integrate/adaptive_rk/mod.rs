@@ -41,7 +41,7 @@ mod error_scale;
 mod tests;
 
 use super::tableau::{DOP853, DOPRI5, EmbeddedTableau, MAX_DENSE_STAGES};
-use super::{Adaptive, Failure, FailureKind, Limits, MethodInfo, Stats, System};
+use super::{Adaptive, Failure, FailureKind, Limits, MethodInfo, MethodKind, Stats, System};
 use crate::math::vector::Vector;
 use controller::{BETA, Controller};
 pub use error_scale::ErrorScale;
@@ -233,6 +233,8 @@ impl<S: ErrorScale> Adaptive<S> for AdaptiveRk<S> {
             lie_group: S::LIE,
             energy_conserving: false,
             adaptive: true,
+            kind: MethodKind::Explicit,
+            twin_of: None,
         }
     }
 

@@ -60,7 +60,7 @@ mod tests;
 use std::marker::PhantomData;
 
 use super::linalg::DenseLu;
-use super::{Failure, FailureKind, FixedStep, MethodInfo, Stats, System};
+use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats, System};
 use crate::math::vector::Vector;
 use gauss_tableau::{MAX_STAGES, Tableau};
 pub use options::{GaussScheme, JacobianUpdate, NewtonOptions};
@@ -177,6 +177,8 @@ impl<S: System> FixedStep<S> for ImplicitRk<S> {
             lie_group: S::LIE,
             energy_conserving: false,
             adaptive: false,
+            kind: MethodKind::Implicit,
+            twin_of: None,
         }
     }
 

@@ -31,46 +31,55 @@ pub const METRICS: &[Metric] = &[
         name: "position_error_max",
         unit: "m",
         reference_error: true,
+        higher_is_better: false,
     },
     Metric {
         name: "rotation_error_max",
         unit: "rad",
         reference_error: true,
+        higher_is_better: false,
     },
     Metric {
         name: "velocity_error_max",
         unit: "m/s",
         reference_error: true,
+        higher_is_better: false,
     },
     Metric {
         name: "omega_error_max",
         unit: "rad/s",
         reference_error: true,
+        higher_is_better: false,
     },
     Metric {
         name: "energy_drift_max",
         unit: "1",
         reference_error: false,
+        higher_is_better: false,
     },
     Metric {
         name: "energy_drift_final",
         unit: "1",
         reference_error: false,
+        higher_is_better: false,
     },
     Metric {
         name: "momentum_drift_max",
         unit: "1",
         reference_error: false,
+        higher_is_better: false,
     },
     Metric {
         name: "constraint_error_max",
         unit: "1",
         reference_error: false,
+        higher_is_better: false,
     },
     Metric {
         name: "conditioning_min",
         unit: "1",
         reference_error: false,
+        higher_is_better: true,
     },
 ];
 

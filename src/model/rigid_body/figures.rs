@@ -1,42 +1,51 @@
 //! The rigid body's figures in the report (`problem::figures`): three selections that together
 //! draw every registered integrator and every parameterization (rk4 on every chart: the charts
 //! at equal method; every adaptive method on every chart over its tolerance ladder; every
-//! integrator on `so3`, the only chart the geometric methods run on), the energy and
+//! integrator on `so3`, the only chart the geometric methods run on), each split into panels
+//! of at most eight lines (rk4 by chart group; the adaptive methods by chart group and
+//! formulation; so3 by integrator kind, without the Kahan-compensated twins, which belong to
+//! the stability study's long horizon), the energy and
 //! quaternion/matrix constraint drift over time, the Euler charts' breakdown across the scenes
 //! of a case (error, the chart's conditioning, adaptive cost), and the Euler-angle charts as
 //! the group the narrative contrasts with the others (their singular sets).
 use crate::problem::Axis;
-use crate::problem::figures::{Admit, ChartGroup, Figures, Measure, Quantity, Selection};
+use crate::problem::figures::{
+    Admit, ChartGroup, Figures, Measure, ParamGroup, Quantity, Selection, Split,
+};
 
 /// rk4 on every parameterization, both formulations.
 const RK4: Selection = Selection {
     id: "rk4",
-    short: "rk4, every chart",
+    short: "rk4",
     describe: "Lines: rk4 (classical RK4 on additive charts, RKMK4 on Lie-group charts) on \
                every parameterization that ran, body formulation solid, spatial dashed.",
     admit: Admit::Integrator("rk4"),
     legend_axes: &[Axis::Param, Axis::Formulation],
+    split: Split::ParamGroup,
 };
 
 /// Every adaptive method on every parameterization, both formulations.
 const ADAPTIVE: Selection = Selection {
     id: "adaptive",
-    short: "adaptive, every chart",
+    short: "adaptive",
     describe: "Lines: every adaptive method (dopri5, dop853) on every parameterization that \
                ran, over its tolerance ladder; body formulation solid, spatial dashed.",
     admit: Admit::Adaptive,
     legend_axes: &[Axis::Param, Axis::Integrator, Axis::Formulation],
+    split: Split::ParamGroupFormulation,
 };
 
 /// Every integrator on the so3 chart, both formulations.
 const SO3: Selection = Selection {
     id: "so3",
-    short: "so3, every integrator",
+    short: "so3",
     describe: "Lines: every integrator on the so3 chart (unit quaternion on SO(3)), body \
                formulation solid, spatial dashed (the geometric methods run in the body \
-               formulation only).",
+               formulation only; the Kahan-compensated twins are in the stability study's long \
+               horizon).",
     admit: Admit::Param("so3"),
     legend_axes: &[Axis::Integrator, Axis::Formulation],
+    split: Split::Kind,
 };
 
 const CONSTRAINT: Quantity = Quantity::Constraint {
@@ -79,4 +88,21 @@ pub const FIGURES: Figures = Figures {
         one: "an Euler chart",
         compare_with: "so3",
     }),
+    param_groups: &[
+        ParamGroup {
+            id: "minimal",
+            label: "Euler angles and rotvec",
+            params: &["euler_xyz", "euler_zyx", "euler_zxz", "rotvec"],
+        },
+        ParamGroup {
+            id: "embedded",
+            label: "quaternions and matrices",
+            params: &["quat", "quat_proj", "matrix", "matrix_proj"],
+        },
+        ParamGroup {
+            id: "group",
+            label: "Lie-group charts",
+            params: &["so3", "se3_hq", "dual_quat"],
+        },
+    ],
 };

@@ -8,7 +8,7 @@ use crate::case::{Case, CaseError, Scene};
 use crate::integrate::adaptive_rk::AdaptiveRk;
 use crate::integrate::explicit_rk::ExplicitRk;
 use crate::integrate::{Adaptive, FixedStep};
-use crate::problem::figures::{Admit, Figures, Measure, Quantity, Selection};
+use crate::problem::figures::{Admit, Figures, Measure, Quantity, Selection, Split};
 use crate::problem::{Axes, Axis, Column, Family, Metric, Problem, Stepping, Variant};
 use crate::run::{Observe, RunOutput, Watched, run_adaptive, run_fixed};
 
@@ -19,6 +19,7 @@ const ALL: Selection = Selection {
     describe: "Lines: every variant that ran, chain_nodal solid, chain_modal dashed.",
     admit: Admit::All,
     legend_axes: &[Axis::Integrator, Axis::Formulation],
+    split: Split::Whole,
 };
 
 /// The chain's figures: work-precision and convergence of every variant, energy over time.
@@ -31,6 +32,7 @@ const FIGURES: Figures = Figures {
     timeseries: &[(Quantity::Energy, ALL)],
     across_scenes: &[(ALL, Measure::Primary)],
     chart_group: None,
+    param_groups: &[],
 };
 
 /// The spring-chain family.
@@ -46,21 +48,25 @@ pub static FAMILY: Family = Family {
             name: "displacement_error_max",
             unit: "m",
             reference_error: true,
+            higher_is_better: false,
         },
         Metric {
             name: "velocity_error_max",
             unit: "m/s",
             reference_error: true,
+            higher_is_better: false,
         },
         Metric {
             name: "energy_drift_max",
             unit: "1",
             reference_error: false,
+            higher_is_better: false,
         },
         Metric {
             name: "energy_drift_final",
             unit: "1",
             reference_error: false,
+            higher_is_better: false,
         },
     ],
     columns: &[

@@ -7,7 +7,7 @@
 use nalgebra::{Vector3, Vector6};
 
 use super::{ChainSystem, Coordinates};
-use crate::integrate::{Failure, FixedStep, MethodInfo, Stats};
+use crate::integrate::{Failure, FixedStep, MethodInfo, MethodKind, Stats};
 
 /// The method, with the acceleration at the current state cached between steps.
 #[derive(Debug, Clone, Default)]
@@ -33,6 +33,8 @@ impl<C: Coordinates> FixedStep<ChainSystem<C>> for StormerVerlet {
             lie_group: false,
             energy_conserving: false,
             adaptive: false,
+            kind: MethodKind::Geometric,
+            twin_of: None,
         }
     }
 

@@ -1,7 +1,10 @@
 //! The long-horizon part: energy and momentum error against t (log-log, from the series
-//! files beside stability.json) with the growth exponent in the legend, and a table of
-//! exponents and final errors.
+//! files beside stability.json) with the growth exponent in the legend, one panel per
+//! integrator kind (`integrate::MethodKind`; each method beside its Kahan-compensated twin, at
+//! most eight lines), and a table of exponents and final errors.
 use super::*;
+use crate::integrate::MethodKind;
+use crate::report::select::kind_of;
 
 /// The columns of a long-horizon series file: `t`, energy error, momentum error (None when the
 /// body conserves no momentum component).
@@ -56,7 +59,14 @@ pub(super) fn long_plots(
     let loaded: Vec<(&Record, Option<LongSeries>)> =
         rs.iter().map(|r| (*r, load_long_series(dir, r))).collect();
     let mut out = vec![];
-    for momentum in [false, true] {
+    let kinds: Vec<MethodKind> = MethodKind::ALL
+        .into_iter()
+        .filter(|k| rs.iter().any(|r| kind_of(&r.key.integrator) == *k))
+        .collect();
+    for (momentum, kind) in [false, true]
+        .into_iter()
+        .flat_map(|m| kinds.iter().map(move |k| (m, *k)))
+    {
         let metric = if momentum {
             "momentum_growth_exponent"
         } else {
@@ -68,7 +78,10 @@ pub(super) fn long_plots(
         let mut lines = vec![];
         let mut missing = vec![];
         let mut steps: BTreeSet<String> = BTreeSet::new();
-        for (r, s) in &loaded {
+        for (r, s) in loaded
+            .iter()
+            .filter(|(r, _)| kind_of(&r.key.integrator) == kind)
+        {
             let key = VariantKey::of(&r.key);
             if (!momentum || r.metrics.contains_key(metric))
                 && let Some(n) = r.metrics.get("long_horizon_steps").copied().flatten()
@@ -119,12 +132,20 @@ pub(super) fn long_plots(
         if !missing.is_empty() {
             caption.push_str(&format!(" No data: {}.", missing.join("; ")));
         }
+        caption.push_str(&format!(
+            " This panel: the {} methods; the other kinds are in the panels beside it.",
+            kind.name()
+        ));
         out.push(Plot {
             id: format!(
-                "stability/long_{scene}_{}",
-                if momentum { "momentum" } else { "energy" }
+                "stability/long_{scene}_{}_{}",
+                if momentum { "momentum" } else { "energy" },
+                kind.name()
             ),
-            title: format!("{case}/{scene}: {name} over a long horizon"),
+            title: format!(
+                "{case}/{scene}: {name} over a long horizon ({} methods)",
+                kind.name()
+            ),
             x_label: "t (s)".into(),
             y_label: y.into(),
             x: Scale::Log,
@@ -134,6 +155,7 @@ pub(super) fn long_plots(
             legend: Legend::PerLine,
             caption,
             footer: footer.into(),
+            round_off: None,
         });
     }
     out

@@ -436,10 +436,14 @@ pub fn section(
             }
         })
         .collect();
-    let ladder = ladder_plots(name, &fits, &search, footer)
-        .iter()
-        .map(super::figure)
-        .collect();
+    // Plots whose lines follow the run's variants are cut to at most eight lines each.
+    let small = |ps: Vec<Plot>| -> Vec<Figure> {
+        ps.into_iter()
+            .flat_map(super::select::split_crowded)
+            .map(|p| super::figure(&p))
+            .collect()
+    };
+    let ladder = small(ladder_plots(name, &fits, &search, footer));
     let mut long_figs = vec![];
     let mut long_sorted = long.clone();
     long_sorted.sort_by_key(|r| VariantKey::of(&r.key));
@@ -465,14 +469,12 @@ pub fn section(
         ladder,
         long_horizon: long_figs,
         long_table: (!long_sorted.is_empty()).then(|| long_table(name, &long_sorted)),
-        singularity: singularity_plots(name, &other, footer)
-            .iter()
-            .map(super::figure)
-            .collect(),
-        sensitivity: sensitivity_plot(name, &other, src.dir, footer)
-            .iter()
-            .map(super::figure)
-            .collect(),
+        singularity: small(singularity_plots(name, &other, footer)),
+        sensitivity: small(
+            sensitivity_plot(name, &other, src.dir, footer)
+                .into_iter()
+                .collect(),
+        ),
         other: (!other.is_empty()).then(|| other_table(name, &other)),
         other_fits: (!other_fits.is_empty()).then(|| other_fits_table(name, &other_fits)),
     })

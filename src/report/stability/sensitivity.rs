@@ -75,5 +75,6 @@ pub(super) fn sensitivity_plot(
         legend: Legend::PerLine,
         caption,
         footer: footer.into(),
+        round_off: None,
     })
 }

@@ -151,6 +151,7 @@ pub(super) fn singularity_plots(case: &str, rs: &[&Record], footer: &str) -> Vec
                 legend: Legend::PerLine,
                 caption,
                 footer: footer.into(),
+                round_off: None,
             });
         }
     }

@@ -129,6 +129,7 @@ pub(super) fn ladder_plots(
             legend: Legend::PerLine,
             caption,
             footer: footer.into(),
+            round_off: None,
         });
     }
     out

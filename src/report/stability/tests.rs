@@ -230,7 +230,7 @@ fn stability_fixture_renders_tables_and_plots() {
     assert!(fb.contains("free_body: long horizon"));
     assert!(fb.contains("<td>0.980</td>"));
     assert!(
-        out.join("svg/free_body/stability/long_gni_energy.svg")
+        out.join("svg/free_body/stability/long_gni_energy_explicit.svg")
             .is_file()
     );
     // A case only in stability.json gets a section with its record.
