@@ -391,7 +391,7 @@ pub fn run_catalogue(
         fits,
         selection: Some(selection),
     };
-    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    let text = summary.to_json_lines().map_err(|e| e.to_string())?;
     staging.write("summary.json", text.as_bytes())?;
     staging.commit()?;
     Ok(summary)

@@ -271,7 +271,9 @@ fn draw(
         Some(end) => buf.insert_str(end, &overlay),
         None => return Err(DrawError("the SVG backend wrote no closing tag".into())),
     }
-    Ok(buf)
+    // plotters writes a `<line>` per grid line and tick: merged into paths, about half the
+    // bytes of a plot (`svg_compact`).
+    Ok(super::svg_compact::merge_lines(&buf))
 }
 
 /// A sans-serif font of `px` pixels in the SVG (plotters writes `font-size` = size / 1.24).

@@ -43,6 +43,7 @@ pub mod script;
 pub mod select;
 pub mod stability;
 pub mod style;
+pub mod svg_compact;
 pub mod tables;
 pub mod timeseries;
 pub mod work_precision;
