@@ -550,7 +550,7 @@ mod tests {
         );
         assert_eq!(round_sig(1.0 / 3.0, 6), 0.333333);
         assert_eq!(round_sig(0.7000000000000001, 6), 0.7);
-        assert_eq!(round_sig(-2.2204460492503131e-16, 6), -2.22045e-16);
+        assert_eq!(round_sig(-f64::EPSILON, 6), -2.22045e-16);
         for x in [1.0 / 3.0, 123456.789, 9.999995e-9, f64::NAN, 0.0] {
             let once = round_sig(x, 6);
             assert!(round_sig(once, 6) == once || once.is_nan());
