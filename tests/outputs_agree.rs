@@ -219,7 +219,7 @@ fn the_cli_explains_itself() {
         // clap prints an option without help text as a bare flag line: every `--x` line must
         // carry words after the flag.
         for l in help.lines().filter(|l| l.trim_start().starts_with("--")) {
-            let words = l.trim_start().split_whitespace().count();
+            let words = l.split_whitespace().count();
             assert!(words >= 3, "{cmd}: option without help: {l}");
         }
     }
