@@ -2,15 +2,24 @@
 //! failures (one entry per variant, scene and kind, with how many ladder points failed),
 //! charts whose conditioning fell below `MIN_CONDITIONING` (one entry per chart and scene, at
 //! its lowest), and variants whose energy drift at their finest completed ladder point exceeds
-//! the case's `advise_max_energy_drift`.
+//! the case's `advise_max_energy_drift`, and variants whose observed order is not one: an
+//! order fit whose local slopes spread by more than `metrics::order::ASYMPTOTIC_SPREAD`
+//! (the ladder straddles a change of regime; the report prints "not asymptotic" instead of
+//! the order).
 use std::collections::BTreeMap;
 
 use super::{Avoid, CaseSpec, MIN_CONDITIONING, SceneSpec};
-use crate::summary::{Record, Status};
+use crate::metrics::order::{ASYMPTOTIC_SPREAD, slope_spread};
+use crate::summary::{FitRecord, Record, Status};
 
-/// The avoid list of one case (failures, then conditioning, then drift; each in the
-/// family's variant order).
-pub(super) fn avoid(spec: &CaseSpec, scenes: &[&SceneSpec], records: &[&Record]) -> Vec<Avoid> {
+/// The avoid list of one case (failures, then conditioning, then drift, then order fits;
+/// each in the family's variant order).
+pub(super) fn avoid(
+    spec: &CaseSpec,
+    scenes: &[&SceneSpec],
+    records: &[&Record],
+    fits: &[&FitRecord],
+) -> Vec<Avoid> {
     let in_scope = |r: &&&Record| scenes.iter().any(|s| s.name == r.key.scene);
     let mut out = vec![];
     // Failures: (variant, scene, kind) -> (count, first time).
@@ -96,6 +105,26 @@ pub(super) fn avoid(spec: &CaseSpec, scenes: &[&SceneSpec], records: &[&Record])
                     "energy drift {d:.1e} at its finest completed point ({}), above {:e}",
                     setting(r),
                     spec.max_energy_drift
+                ),
+            });
+        }
+    }
+    for f in fits {
+        if !scenes.iter().any(|s| s.name == f.key.scene) || f.order.is_none() {
+            continue;
+        }
+        if let Some((spread, lo, hi)) = slope_spread(&f.points)
+            && spread > ASYMPTOTIC_SPREAD
+        {
+            out.push(Avoid {
+                param: f.key.param.clone(),
+                integrator: Some(f.key.integrator.clone()),
+                formulation: Some(f.key.formulation.clone()),
+                scene: f.key.scene.clone(),
+                reason: format!(
+                    "its {} ladder is not asymptotic: local slopes {lo:.2} to {hi:.2} (spread \
+                     above {ASYMPTOTIC_SPREAD}), so its fitted order is not an order",
+                    f.metric
                 ),
             });
         }

@@ -23,7 +23,8 @@
 //! What to avoid (`avoid.rs`), from the data of the non-control scenes: typed failures (kind,
 //! scene, how many ladder points), charts whose conditioning fell below 1e-3, and variants
 //! whose energy drift at their finest completed ladder point exceeds the case's
-//! `advise_max_energy_drift` (default 1e-3).
+//! `advise_max_energy_drift` (default 1e-3), and order fits that are not asymptotic (local
+//! slopes spread by more than 1).
 //!
 //! The JSON (`--json`, schema 1; docs/schemas.md, "advise --json"): `{schema, by, cases: [{case,
 //! metric, unit, scenes, controls, targets: [{target, winner, runner_up, gap, by_time, note}],
@@ -298,7 +299,16 @@ pub fn advise(summary: &Summary, specs: &[CaseSpec], opts: &Options) -> Advice {
                 controls,
                 targets,
                 skipped_targets,
-                avoid: avoid::avoid(spec, &scenes, &records),
+                avoid: avoid::avoid(
+                    spec,
+                    &scenes,
+                    &records,
+                    &summary
+                        .fits
+                        .iter()
+                        .filter(|f| f.key.case == spec.case)
+                        .collect::<Vec<_>>(),
+                ),
                 robustness: opts
                     .stability
                     .as_ref()

@@ -3,7 +3,7 @@
 //! the targets, the wall-time ranking's 10 ms rule) and the avoid list.
 use super::*;
 use crate::integrate::{Failure, FailureKind, Stats};
-use crate::summary::{Env, Record, RunKey, Status, Wall};
+use crate::summary::{Env, FitRecord, Record, RunKey, Status, Wall};
 
 /// A run of `param/integrator/body` on `scene` at step `dt` with primary error `err` (None:
 /// failed with `singular_chart`), `rhs` evaluations and median wall time `wall` s.
@@ -225,4 +225,63 @@ fn only_completed_runs_count() {
     ]);
     let a = advise(&s, &[spec(0.0)], &Options::default());
     assert_eq!(a.cases[0].targets[0].winner.as_ref().unwrap().param, "so3");
+}
+
+/// An order fit whose local slopes spread by more than 1 lists its variant ("not
+/// asymptotic"); a clean fit, a fit without an order and a fit on a control scene do not.
+#[test]
+fn avoid_non_asymptotic_fits() {
+    let fit = |scene: &str, integ: &str, order: Option<f64>, pts: Vec<[f64; 2]>| FitRecord {
+        key: RunKey::new("c", scene, "so3", integ, "body"),
+        metric: "rotation_error_max".into(),
+        order,
+        reason: None,
+        points: pts,
+    };
+    let mut s = summary(vec![
+        rec("a", "so3", "rk4", 1e-2, Some(1e-4), 100, 0.02),
+        rec("b", "so3", "rk4", 1e-2, Some(1e-4), 100, 0.02),
+    ]);
+    s.fits = vec![
+        // Slopes 4 and 1: straddles a change of regime.
+        fit(
+            "a",
+            "rk4",
+            Some(2.4),
+            vec![[1e-3, 1e-12], [1e-2, 1e-8], [1e-1, 1e-7]],
+        ),
+        // Slopes 4.0 and 4.0.
+        fit(
+            "a",
+            "gauss6",
+            Some(4.0),
+            vec![[1e-3, 1e-12], [1e-2, 1e-8], [1e-1, 1e-4]],
+        ),
+        fit(
+            "a",
+            "dopri5",
+            None,
+            vec![[1e-3, 1e-12], [1e-2, 1e-8], [1e-1, 1e-7]],
+        ),
+        fit(
+            "ctl",
+            "rk4",
+            Some(2.4),
+            vec![[1e-3, 1e-12], [1e-2, 1e-8], [1e-1, 1e-7]],
+        ),
+    ];
+    let a = advise(&s, &[spec(0.0)], &Options::default());
+    let fits: Vec<&Avoid> = a.cases[0]
+        .avoid
+        .iter()
+        .filter(|v| v.reason.contains("not asymptotic"))
+        .collect();
+    assert_eq!(fits.len(), 1, "{fits:?}");
+    assert_eq!(fits[0].integrator.as_deref(), Some("rk4"));
+    assert_eq!(fits[0].scene, "a");
+    assert!(
+        fits[0].reason.contains("1.00 to 4.00"),
+        "{}",
+        fits[0].reason
+    );
 }

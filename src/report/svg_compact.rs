@@ -4,8 +4,8 @@
 //! bytes). `merge_lines` replaces each run of consecutive `<line>` elements with the same
 //! style by one `<path>` whose `d` holds every segment (`M x1 y1 L x2 y2`, or `V`/`H` for the
 //! vertical and horizontal ones). Drawing order is kept (only neighbours merge), so the
-//! picture is the same pixel for pixel; a line whose attributes are not in plotters' form is
-//! left as it is.
+//! picture is the same pixel for pixel; a line whose attributes are not in plotters' form, and
+//! anything inside a group (the data layer's series), is left as it is.
 //!
 //! # Example
 //!
@@ -89,10 +89,23 @@ pub fn merge_lines(svg: &str) -> String {
             out.push_str(&format!("<path {style} fill=\"none\" d=\"{d}\"/>\n"));
         }
     };
+    // Only plotters' own elements merge: the data layer's series groups (`<g ...>`, drawn
+    // by `chart`) keep their elements, which the browser self-test counts.
+    let mut depth = 0usize;
     for line in svg.split_inclusive('\n') {
-        let parsed = parse(line)
-            .map(|(style, xs)| (style, segment(xs)))
-            .or_else(|| parse_polyline(line));
+        let t = line.trim_start();
+        if t.starts_with("<g") {
+            depth += 1;
+        } else if t.starts_with("</g>") {
+            depth = depth.saturating_sub(1);
+        }
+        let parsed = if depth > 0 {
+            None
+        } else {
+            parse(line)
+                .map(|(style, xs)| (style, segment(xs)))
+                .or_else(|| parse_polyline(line))
+        };
         match parsed {
             Some((style, seg)) => match &mut run {
                 Some((s, d, n)) if *s == style => {
@@ -156,6 +169,9 @@ mod tests {
         // A filled polyline is not merged.
         let filled = "<polyline fill=\"#fff\" points=\"1,2 3,4 \"/>\n";
         assert_eq!(merge_lines(filled), filled);
+        // Inside a group (a data series) nothing merges.
+        let series = "<g class=\"series\">\n<polyline fill=\"none\" stroke=\"#000\" points=\"1,2 3,4 \"/>\n<polyline fill=\"none\" stroke=\"#000\" points=\"5,6 7,8 \"/>\n</g>\n";
+        assert_eq!(merge_lines(series), series);
         // Without lines the SVG is unchanged.
         let plain = "<svg>\n<text>x</text>\n</svg>\n";
         assert_eq!(merge_lines(plain), plain);
