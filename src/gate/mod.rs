@@ -47,7 +47,7 @@ mod fixture;
 
 pub use load::{load_summary, stability_beside};
 pub use regression::{DEFAULT_FACTOR, compare_baseline, is_baseline_row, update_baseline};
-pub use table::{exit_code, print_table, print_verdict, verdict_line};
+pub use table::{exit_code, print_table, print_verdict, skipped_by_reason, verdict_line};
 pub use validate::known_metrics;
 use validate::{check_threshold, check_where_values, describe, keep};
 

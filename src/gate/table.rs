@@ -122,17 +122,22 @@ fn print_tail(rows: &[GateRow], out: &mut impl Write) -> std::io::Result<()> {
         )?;
     }
     // Skipped rows by reason, one line each (a filtered run skips hundreds).
-    let mut skipped: Vec<(&str, usize)> = vec![];
-    for r in rows.iter().filter(|r| r.verdict == Verdict::Skip) {
-        match skipped.iter_mut().find(|(n, _)| *n == r.note) {
-            Some((_, k)) => *k += 1,
-            None => skipped.push((&r.note, 1)),
-        }
-    }
-    for (note, k) in &skipped {
+    for (note, k) in &skipped_by_reason(rows) {
         writeln!(out, "skipped {k}: {note}")?;
     }
     writeln!(out, "{}", verdict_line(rows))
+}
+
+/// The skipped rows' reasons with their counts, in first-seen order.
+pub fn skipped_by_reason(rows: &[GateRow]) -> Vec<(String, usize)> {
+    let mut skipped: Vec<(String, usize)> = vec![];
+    for r in rows.iter().filter(|r| r.verdict == Verdict::Skip) {
+        match skipped.iter_mut().find(|(n, _)| *n == r.note) {
+            Some((_, k)) => *k += 1,
+            None => skipped.push((r.note.clone(), 1)),
+        }
+    }
+    skipped
 }
 
 /// `N passed, N failed, N skipped`: the gate's last line, and the report's gate summary.

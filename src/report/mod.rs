@@ -140,17 +140,10 @@ pub struct GateSummary {
 
 impl GateSummary {
     fn of(rows: &[GateRow]) -> GateSummary {
-        let mut skipped: Vec<(String, usize)> = vec![];
-        for r in rows.iter().filter(|r| r.verdict == Verdict::Skip) {
-            match skipped.iter_mut().find(|(n, _)| *n == r.note) {
-                Some((_, k)) => *k += 1,
-                None => skipped.push((r.note.clone(), 1)),
-            }
-        }
         GateSummary {
             line: crate::gate::verdict_line(rows),
             failed: rows.iter().filter(|r| r.verdict == Verdict::Fail).count(),
-            skipped,
+            skipped: crate::gate::skipped_by_reason(rows),
         }
     }
 }
