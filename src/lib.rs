@@ -40,5 +40,6 @@ pub mod rotation;
 pub mod run;
 pub mod selection;
 pub mod stability;
+pub mod structural;
 pub mod suite;
 pub mod summary;

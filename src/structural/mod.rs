@@ -1,0 +1,87 @@
+//! Structural dynamics: the second-order systems of the flexible families (the flexible beam,
+//! later the fiber column and the constrained mechanisms) and their integrators.
+//!
+//! A system is written in residual form, with run-time sizes (its size comes from the case
+//! file: a mode or element count):
+//!
+//! ```text
+//! r(t, q, v, a) + G(q)^T lambda = 0,        r = M(q) a + f(t, q, v),
+//! g(t, q) = 0                                (constrained systems only),
+//! ```
+//!
+//! where `q` are the coordinates, `v = q'`, `a = q''`, `M` the (possibly singular) mass
+//! matrix, `f` every other force (internal, gyroscopic, inertial terms of a moving frame,
+//! minus the applied loads) and `G = dg/dq` the constraint Jacobian with multipliers `lambda`.
+//! Newton's method needs the combination `S = c_m dr/da + c_c dr/dv + c_k dr/dq` that each
+//! integrator forms from its own coefficients (Newmark: `c_m = 1`, `c_c = gamma/(beta h)`,
+//! `c_k = 1/(beta h^2)`), so a system never knows which integrator runs it.
+//!
+//! Invariants: every method writes into caller-owned buffers sized once (`dim`,
+//! `n_constraints`), so a time loop built on these traits allocates nothing per step.
+//! Where it fails: a system whose `S` is singular for every step (a massless, unloaded
+//! coordinate with no stiffness) makes every implicit method report a `newton_failure`.
+use nalgebra::{DMatrix, DVector};
+
+/// A second-order system `M(q) a + f(t, q, v) = 0` in residual form.
+pub trait SecondOrder: Send + Sync {
+    /// The number of coordinates `n`.
+    fn dim(&self) -> usize;
+
+    /// Writes `r = M(q) a + f(t, q, v)` into `r` (length `n`).
+    fn residual(
+        &self,
+        t: f64,
+        q: &DVector<f64>,
+        v: &DVector<f64>,
+        a: &DVector<f64>,
+        r: &mut DVector<f64>,
+    );
+
+    /// Overwrites `s` (`n x n`) with `c_m dr/da + c_c dr/dv + c_k dr/dq` at `(t, q, v, a)`.
+    #[allow(clippy::too_many_arguments)]
+    fn tangent(
+        &self,
+        t: f64,
+        q: &DVector<f64>,
+        v: &DVector<f64>,
+        a: &DVector<f64>,
+        c_m: f64,
+        c_c: f64,
+        c_k: f64,
+        s: &mut DMatrix<f64>,
+    );
+}
+
+/// Holonomic constraints `g(t, q) = 0` (length `m`) on a second-order system, with the
+/// multipliers `lambda` entering its equations as `G(q)^T lambda`.
+pub trait Constraints: SecondOrder {
+    /// The number of constraints `m`.
+    fn n_constraints(&self) -> usize;
+
+    /// Writes `g(t, q)` into `out` (length `m`).
+    fn g(&self, t: f64, q: &DVector<f64>, out: &mut DVector<f64>);
+
+    /// Overwrites `out` (`m x n`) with `G = dg/dq` at `(t, q)`.
+    fn jacobian(&self, t: f64, q: &DVector<f64>, out: &mut DMatrix<f64>);
+
+    /// Adds `c_k d(G(q)^T lambda)/dq` into `s` (`n x n`); nothing for constraints linear in
+    /// `q` (the default).
+    fn add_lambda_tangent(
+        &self,
+        t: f64,
+        q: &DVector<f64>,
+        lambda: &DVector<f64>,
+        c_k: f64,
+        s: &mut DMatrix<f64>,
+    ) {
+        let _ = (t, q, lambda, c_k, s);
+    }
+
+    /// Writes `dg/dt` and `d2g/dt2` at fixed `q` into `g_t` and `g_tt` (Baumgarte's
+    /// stabilisation of rheonomic constraints); zero for scleronomic ones (the default).
+    fn g_time(&self, t: f64, q: &DVector<f64>, g_t: &mut DVector<f64>, g_tt: &mut DVector<f64>) {
+        let _ = (t, q);
+        g_t.fill(0.0);
+        g_tt.fill(0.0);
+    }
+}
