@@ -60,7 +60,8 @@ pub struct Selection {
     pub id: &'static str,
     /// A title fragment.
     pub short: &'static str,
-    /// The caption sentence naming the lines.
+    /// The caption sentence naming what is drawn (each plot says whether as lines or dots, and
+    /// what the line styles mean, from `Figures::line_styles`).
     pub describe: &'static str,
     pub admit: Admit,
     /// The axes a convergence legend names: those that vary within the selection.
@@ -160,4 +161,7 @@ pub struct Figures {
     /// The parameterization groups of `Split::ParamGroup` panels, in report order (a
     /// parameterization in none of them gets a panel of its own kind, "other charts").
     pub param_groups: &'static [ParamGroup],
+    /// What the line styles mean in the line plots (e.g. "body formulation solid, spatial
+    /// dashed"); the dot plots place a variant's formulations side by side instead.
+    pub line_styles: &'static str,
 }

@@ -115,7 +115,8 @@ pub fn plot(cv: &CaseView, sv: &SceneView, sel: &Panel, footer: &str) -> Plot {
              local: the range of the slopes between consecutive points of the fit. A fit whose \
              local slopes differ by more than {ASYMPTOTIC_SPREAD} is not asymptotic and gives \
              no order.",
-            cv.primary, sel.describe
+            cv.primary,
+            sel.drawn(cv.family, false)
         ),
         footer: footer.into(),
         round_off: None,

@@ -170,12 +170,12 @@ pub fn plot(cv: &CaseView, sel: &Panel, m: Measure, footer: &str) -> Plot {
     };
     let at = if common && !vals.is_empty() {
         format!(
-            "{step} = {} for every line (the middle of the ladder values common to all scenes)",
+            "{step} = {} for every variant (the middle of the ladder values common to all scenes)",
             vals[0]
         )
     } else {
         format!(
-            "no {step} is common to every line; each at the middle of its own common values ({})",
+            "no {step} is common to every variant; each at the middle of its own common values ({})",
             vals.join(", ")
         )
     };
@@ -210,7 +210,7 @@ pub fn plot(cv: &CaseView, sel: &Panel, m: Measure, footer: &str) -> Plot {
         caption: format!(
             "Across scenes: {what}, {at}. {} One dot per variant and scene (scenes are \
              categories: the dots are not joined). Marks in the red band: runs that failed.",
-            sel.describe
+            sel.drawn(cv.family, true)
         ),
         footer: footer.into(),
     }

@@ -95,6 +95,24 @@ impl Panel {
         }
     }
 
+    /// The caption's sentences on what the panel draws: as lines (with what the family's line
+    /// styles mean) or as dots (a variant's formulations side by side, in registry order).
+    pub fn drawn(&self, family: &Family, dots: bool) -> String {
+        if dots {
+            format!(
+                "Dots: {} A variant's formulations sit side by side, in registry order.",
+                self.describe
+            )
+        } else if self.formulation.is_some() || family.figures.line_styles.is_empty() {
+            format!("Lines: {}", self.describe)
+        } else {
+            format!(
+                "Lines: {} Line style: {}.",
+                self.describe, family.figures.line_styles
+            )
+        }
+    }
+
     /// Whether the panel's own filter (kind, parameterizations, formulation) passes.
     pub fn admits_key(&self, param: &str, integrator: &str, formulation: &str) -> bool {
         self.kind.is_none_or(|k| kind_of(integrator) == k)

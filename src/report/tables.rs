@@ -385,10 +385,13 @@ pub fn matrix(cv: &CaseView, sv: &SceneView, gates: Option<&[GateRow]>) -> Table
 
 /// The gate rows of a case (None without gate rows).
 pub fn gate_table(cv: &CaseView, gates: Option<&[GateRow]>) -> Option<Table> {
-    let gates = gates?;
-    let rows: Vec<Vec<Cell>> = gates
+    let gates: Vec<GateRow> = gates?
         .iter()
         .filter(|g| g.key.case == cv.name)
+        .cloned()
+        .collect();
+    let rows: Vec<Vec<Cell>> = gates
+        .iter()
         .map(|g| {
             let step = match (g.dt, g.tol) {
                 (Some(h), _) => format!("dt {}", num(h)),
@@ -422,14 +425,10 @@ pub fn gate_table(cv: &CaseView, gates: Option<&[GateRow]>) -> Option<Table> {
             ]
         })
         .collect();
-    let failed = rows
-        .iter()
-        .filter(|r| r.get(8).is_some_and(|c| c.tone == Tone::Fail))
-        .count();
     Some(Table {
         kind: "gates",
         title: format!("{}: gates", cv.name),
-        note: format!("{} passed, {failed} failed.", rows.len() - failed),
+        note: format!("{}.", crate::gate::verdict_line(&gates)),
         header: [
             "scene",
             "param",

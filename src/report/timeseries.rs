@@ -105,7 +105,7 @@ pub fn plot(
         ),
         Quantity::Constraint { what } => what.to_string(),
     };
-    caption.push_str(&sel.describe);
+    caption.push_str(&sel.drawn(cv.family, false));
     caption.push_str(&format!(
         " Each variant at its coarsest completed ladder point: {}.",
         if used.is_empty() {

@@ -141,7 +141,8 @@ pub fn plot(
             "Work-precision: {} (max over the run) {what}, each line through the variant's \
              whole ladder (fixed steps coarse to fine, tolerances loose to tight). {} Lower \
              left is better; marks in the red band are runs that failed, at the work they did.",
-            cv.primary, sel.describe
+            cv.primary,
+            sel.drawn(cv.family, false)
         ),
         footer: footer.into(),
     }

@@ -17,8 +17,8 @@ use crate::problem::figures::{
 const RK4: Selection = Selection {
     id: "rk4",
     short: "rk4",
-    describe: "Lines: rk4 (classical RK4 on additive charts, RKMK4 on Lie-group charts) on \
-               every parameterization that ran, body formulation solid, spatial dashed.",
+    describe: "rk4 (classical RK4 on additive charts, RKMK4 on Lie-group charts) on every \
+               parameterization that ran, both formulations.",
     admit: Admit::Integrator("rk4"),
     legend_axes: &[Axis::Param, Axis::Formulation],
     split: Split::ParamGroup,
@@ -28,8 +28,8 @@ const RK4: Selection = Selection {
 const ADAPTIVE: Selection = Selection {
     id: "adaptive",
     short: "adaptive",
-    describe: "Lines: every adaptive method (dopri5, dop853) on every parameterization that \
-               ran, over its tolerance ladder; body formulation solid, spatial dashed.",
+    describe: "every adaptive method (dopri5, dop853) on every parameterization that ran, over \
+               its tolerance ladder, both formulations.",
     admit: Admit::Adaptive,
     legend_axes: &[Axis::Param, Axis::Integrator, Axis::Formulation],
     split: Split::ParamGroupFormulation,
@@ -39,10 +39,9 @@ const ADAPTIVE: Selection = Selection {
 const SO3: Selection = Selection {
     id: "so3",
     short: "so3",
-    describe: "Lines: every integrator on the so3 chart (unit quaternion on SO(3)), body \
-               formulation solid, spatial dashed (the geometric methods run in the body \
-               formulation only; the Kahan-compensated twins are in the stability study's long \
-               horizon).",
+    describe: "every integrator on the so3 chart (unit quaternion on SO(3)), both \
+               formulations (the geometric methods run in the body formulation only; the \
+               Kahan-compensated twins are in the stability study's long horizon).",
     admit: Admit::Param("so3"),
     legend_axes: &[Axis::Integrator, Axis::Formulation],
     split: Split::Kind,
@@ -105,4 +104,5 @@ pub const FIGURES: Figures = Figures {
             params: &["so3", "se3_hq", "dual_quat"],
         },
     ],
+    line_styles: "body formulation solid, spatial dashed",
 };

@@ -16,7 +16,7 @@ use crate::run::{Observe, RunOutput, Watched, run_adaptive, run_fixed};
 const ALL: Selection = Selection {
     id: "all",
     short: "every variant",
-    describe: "Lines: every variant that ran, chain_nodal solid, chain_modal dashed.",
+    describe: "every variant that ran.",
     admit: Admit::All,
     legend_axes: &[Axis::Integrator, Axis::Formulation],
     split: Split::Whole,
@@ -33,6 +33,7 @@ const FIGURES: Figures = Figures {
     across_scenes: &[(ALL, Measure::Primary)],
     chart_group: None,
     param_groups: &[],
+    line_styles: "chain_nodal solid, chain_modal dashed",
 };
 
 /// The spring-chain family.
