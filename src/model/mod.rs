@@ -2,6 +2,7 @@
 //! the `families!` list below, which declares its module and its entry in the family table
 //! (`problem::FAMILIES`, in report order); `linear_modes` and `torque_free` serve the rigid
 //! body (its stability study and exact references).
+pub mod flexible_beam;
 pub mod linear_modes;
 pub mod torque_free;
 
