@@ -22,6 +22,8 @@
 //! coordinate with no stiffness) makes every implicit method report a `newton_failure`.
 use nalgebra::{DMatrix, DVector};
 
+pub mod lu;
+
 /// A second-order system `M(q) a + f(t, q, v) = 0` in residual form.
 pub trait SecondOrder: Send + Sync {
     /// The number of coordinates `n`.
