@@ -22,7 +22,10 @@
 //! coordinate with no stiffness) makes every implicit method report a `newton_failure`.
 use nalgebra::{DMatrix, DVector};
 
+mod init;
 pub mod lu;
+pub mod newton;
+pub mod state;
 
 /// A second-order system `M(q) a + f(t, q, v) = 0` in residual form.
 pub trait SecondOrder: Send + Sync {
