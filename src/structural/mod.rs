@@ -22,10 +22,15 @@
 //! coordinate with no stiffness) makes every implicit method report a `newton_failure`.
 use nalgebra::{DMatrix, DVector};
 
+pub mod gen_alpha;
+pub mod hht;
 mod init;
 pub mod lu;
+pub mod newmark;
 pub mod newton;
 pub mod state;
+#[cfg(test)]
+mod test_support;
 
 /// A second-order system `M(q) a + f(t, q, v) = 0` in residual form.
 pub trait SecondOrder: Send + Sync {
