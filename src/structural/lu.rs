@@ -68,7 +68,7 @@ impl std::fmt::Display for LuError {
 ///     4.0, 0.0, 3.0,
 /// ]));
 /// lu.factor().unwrap();
-/// let mut b = DVector::from_vec(vec![5.0, 3.0, 13.0]);
+/// let mut b = DVector::from_vec(vec![7.0, 3.0, 13.0]);
 /// lu.solve_in_place(&mut b).unwrap();
 /// assert!((b - DVector::from_vec(vec![1.0, 2.0, 3.0])).amax() < 1e-14);
 ///
