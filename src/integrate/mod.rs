@@ -290,22 +290,27 @@ pub enum MethodKind {
     /// Lie generalized-alpha), variational (LGVI, Stormer-Verlet), splitting and
     /// energy-momentum (Simo-Wong) methods.
     Geometric,
+    /// The Newmark family of structural dynamics on second-order systems in residual form
+    /// (`structural`: Newmark, HHT, generalized-alpha and its index-3 form).
+    Structural,
 }
 
 impl MethodKind {
     /// Every kind, in report order.
-    pub const ALL: [MethodKind; 3] = [
+    pub const ALL: [MethodKind; 4] = [
         MethodKind::Explicit,
         MethodKind::Implicit,
         MethodKind::Geometric,
+        MethodKind::Structural,
     ];
 
-    /// The kind's name (`explicit`, `implicit`, `geometric`).
+    /// The kind's name (`explicit`, `implicit`, `geometric`, `structural`).
     pub fn name(self) -> &'static str {
         match self {
             MethodKind::Explicit => "explicit",
             MethodKind::Implicit => "implicit",
             MethodKind::Geometric => "geometric",
+            MethodKind::Structural => "structural",
         }
     }
 }

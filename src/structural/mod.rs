@@ -20,7 +20,38 @@
 //! `n_constraints`), so a time loop built on these traits allocates nothing per step.
 //! Where it fails: a system whose `S` is singular for every step (a massless, unloaded
 //! coordinate with no stiffness) makes every implicit method report a `newton_failure`.
+//!
+//! The integrators (one file each; every one a struct with a validating constructor, an
+//! `init` for consistent initial accelerations, a `step(sys, t, h, state, stats)` and an
+//! `info()`, all on the preallocated [`state::State`]):
+//!
+//! - [`newmark::Newmark`]: average acceleration (`beta = 1/4`, `gamma = 1/2`), order 2, no
+//!   numerical dissipation, conserves the energy of linear systems;
+//! - [`hht::Hht`]: Hilber-Hughes-Taylor, `alpha` in `[-1/3, 0]`, order 2, spectral radius
+//!   `(1 + alpha)/(1 - alpha)` at infinity;
+//! - [`gen_alpha::GenAlpha`]: Chung & Hulbert's generalized-alpha in Arnold & Brüls' form,
+//!   `rho_inf` in `[0, 1]`, order 2 for nonlinear systems, spectral radius `rho_inf`;
+//! - [`gen_alpha_i3::GenAlphaI3`]: the same for [`Constraints`] systems in index-3 form,
+//!   with a scaled iteration matrix, order 2 in `q` and `v`.
+//!
+//! Their Newton iterations on the acceleration ask the system for `S` with `c_m = 1`,
+//! `c_c = gamma h`, `c_k = beta h^2` (Newmark's matrix above times `beta h^2`, bounded as
+//! `h -> 0`); the index-3 form uses `c_m = (1 - alpha_m)/(1 - alpha_f)` and the same
+//! `c_c`, `c_k`. They share [`lu::Lu`] (dense LU with partial pivoting in place), [`newton`] (the
+//! Newton iteration on the acceleration and its options) and `init` (consistent initial
+//! accelerations, also for a singular mass matrix).
 use nalgebra::{DMatrix, DVector};
+
+pub mod gen_alpha;
+pub mod gen_alpha_i3;
+pub mod hht;
+mod init;
+pub mod lu;
+pub mod newmark;
+pub mod newton;
+pub mod state;
+#[cfg(test)]
+mod test_support;
 
 /// A second-order system `M(q) a + f(t, q, v) = 0` in residual form.
 pub trait SecondOrder: Send + Sync {
