@@ -256,7 +256,7 @@ impl GenAlphaI3 {
                 w.lambda1[k] += w.rhs[n + k] / bh2;
             }
             stats.newton_iters += 1;
-            let rel = ratio(upd, w.q1.amax() + vscale);
+            let rel = ratio(upd, w.q1.amax() + vscale + sys.length_scale());
             if rel.is_nan() || !upd.is_finite() {
                 return Err(Failure::new(
                     crate::integrate::FailureKind::NonFinite,

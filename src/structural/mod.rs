@@ -13,8 +13,9 @@
 //! matrix, `f` every other force (internal, gyroscopic, inertial terms of a moving frame,
 //! minus the applied loads) and `G = dg/dq` the constraint Jacobian with multipliers `lambda`.
 //! Newton's method needs the combination `S = c_m dr/da + c_c dr/dv + c_k dr/dq` that each
-//! integrator forms from its own coefficients (Newmark: `c_m = 1`, `c_c = gamma/(beta h)`,
-//! `c_k = 1/(beta h^2)`), so a system never knows which integrator runs it.
+//! integrator forms from its own coefficients (Newmark iterating on the acceleration:
+//! `c_m = 1`, `c_c = gamma h`, `c_k = beta h^2`), so a system never knows which integrator
+//! runs it.
 //!
 //! Invariants: every method writes into caller-owned buffers sized once (`dim`,
 //! `n_constraints`), so a time loop built on these traits allocates nothing per step.
@@ -67,6 +68,14 @@ pub trait SecondOrder: Send + Sync {
         a: &DVector<f64>,
         r: &mut DVector<f64>,
     );
+
+    /// The size of the coordinates' round-off (e.g. a structure's length when the
+    /// coordinates are displacements of nodes placed that far apart): Newton's convergence
+    /// test accepts updates below its tolerance times this, even when the state is near 0.
+    /// 0 by default (a purely relative test).
+    fn length_scale(&self) -> f64 {
+        0.0
+    }
 
     /// Overwrites `s` (`n x n`) with `c_m dr/da + c_c dr/dv + c_k dr/dq` at `(t, q, v, a)`.
     #[allow(clippy::too_many_arguments)]

@@ -11,13 +11,15 @@
 //! (N1)  R(x) = r(t_e, q_e + c_k x, v_e + c_c x, x) = 0,
 //! (N2)  S = dR/dx = dr/da + c_c dr/dv + c_k dr/dq        (the system's tangent, c_m = 1),
 //! (N3)  S dx = -R(x),   x <- x + dx,
-//! (N4)  converged when  c_k |dx|_inf <= tol (|q_n|_inf + h |v_n|_inf + c_k |x|_inf),
+//! (N4)  converged when  c_k |dx|_inf <= tol (|q_n|_inf + h |v_n|_inf + c_k |x|_inf + L),
 //! ```
 //!
 //! (Newmark: `x = a_{n+1}`, `c_k = beta h^2`, `c_c = gamma h`; the method files give their
 //! own `t_e, q_e, v_e`). (N4) measures the update as the displacement it causes, relative to
 //! the size of the step's coordinates, so one tolerance serves every time step and unit
-//! system. Full Newton: the tangent is re-evaluated and re-factored every iteration; its
+//! system; `L` is the system's `SecondOrder::length_scale` (0 by default), the size of the
+//! coordinates' round-off: a beam that starts at rest has displacements far below the
+//! round-off of its element lengths, where a purely relative test could never pass. Full Newton: the tangent is re-evaluated and re-factored every iteration; its
 //! convergence is quadratic when the system's tangent is exact. One residual evaluation per
 //! iteration (`stats.rhs_evals`), one update per iteration (`stats.newton_iters`).
 //!
@@ -178,7 +180,7 @@ pub(crate) fn solve_acceleration<S: SecondOrder + ?Sized>(
         *x += &*r;
         stats.newton_iters += 1;
         let upd = p.c_k * r.amax();
-        let rel = ratio(upd, p.scale + p.c_k * x.amax());
+        let rel = ratio(upd, p.scale + p.c_k * x.amax() + sys.length_scale());
         if rel.is_nan() || !upd.is_finite() {
             return Err(Failure::new(
                 FailureKind::NonFinite,

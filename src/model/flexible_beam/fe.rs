@@ -253,6 +253,12 @@ impl SecondOrder for Fe {
         self.off + 3 * self.n_el
     }
 
+    /// The beam's length: the nodes' distance from the hub sets the round-off of the
+    /// element lengths, so of the displacements.
+    fn length_scale(&self) -> f64 {
+        self.beam.l
+    }
+
     fn residual(
         &self,
         t: f64,
