@@ -129,6 +129,7 @@ impl RunOptions {
             formulations: filter.formulation.clone(),
             t_end: self.t_end,
         }
+        .deduped()
     }
 
     /// How the timing pass runs, as recorded in the summary's `env.timing`.

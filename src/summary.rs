@@ -257,6 +257,9 @@ impl Summary {
     /// `n/a` one none, and no error or drift metric (a name containing `error` or `drift`) is
     /// negative. The message names the record by its index and key.
     pub fn check(&self) -> Result<(), String> {
+        if let Some(sel) = &self.selection {
+            sel.check()?;
+        }
         let mut seen: BTreeMap<(&RunKey, u64, u64), usize> = BTreeMap::new();
         for (i, r) in self.records.iter().enumerate() {
             let k = &r.key;

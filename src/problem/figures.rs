@@ -79,7 +79,7 @@ pub const MAX_LINES: usize = 8;
 pub enum Split {
     /// One panel.
     Whole,
-    /// One panel per integrator kind (`integrate::MethodKind`: explicit, implicit, geometric).
+    /// One panel per integrator kind (`integrate::MethodKind`: explicit, implicit, geometric, structural).
     Kind,
     /// One panel per parameterization group (`Figures::param_groups`).
     ParamGroup,

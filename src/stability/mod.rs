@@ -192,7 +192,8 @@ pub fn run_study(
         integrators: filter.integrator.clone(),
         formulations: filter.formulation.clone(),
         t_end: None,
-    };
+    }
+    .deduped();
     // The parts below are the rigid body's (each file's FAMILIES).
     let Some((cases, case_filter, scene_filter)) =
         part_cases(cases, search::FAMILIES, case_filter, scene_filter)
