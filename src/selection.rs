@@ -149,8 +149,9 @@ impl Selection {
     }
 
     /// Checks a selection read from a file: each filter names every name once, at most
-    /// [`MAX_NAMES`] names, each 1 to [`MAX_NAME_LEN`] bytes of letters, digits, `_` and `-`
-    /// (the catalogue's names; a command line gives a few), and `t_end` is finite and
+    /// [`MAX_NAMES`] names, each 1 to [`MAX_NAME_LEN`] bytes without control characters (as a
+    /// record's names: the outputs escape them; a command line gives a few), and `t_end` is
+    /// finite and
     /// positive. Its flags go into the notes of skipped gate rows and the page, so an
     /// unchecked file could multiply a megabyte of names into every row.
     pub fn check(&self) -> Result<(), String> {
@@ -168,14 +169,12 @@ impl Selection {
                 ));
             }
             for (i, n) in list.iter().enumerate() {
-                let ok = !n.is_empty()
-                    && n.len() <= MAX_NAME_LEN
-                    && n.bytes()
-                        .all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-');
+                let ok =
+                    !n.is_empty() && n.len() <= MAX_NAME_LEN && !n.chars().any(char::is_control);
                 if !ok {
                     return Err(format!(
-                        "key `selection.{key}[{i}]` is not a name (1 to {MAX_NAME_LEN} \
-                         letters, digits, `_` or `-`)"
+                        "key `selection.{key}[{i}]` is not a name (1 to {MAX_NAME_LEN} bytes, \
+                         no control characters)"
                     ));
                 }
                 if list[..i].contains(n) {
@@ -327,7 +326,7 @@ mod tests {
         many.integrators = (0..=MAX_NAMES).map(|i| format!("m{i}")).collect();
         assert!(many.check().unwrap_err().contains("selection.integrators"));
         let mut odd = ok.clone();
-        odd.params = vec!["so3 --out /".into()];
+        odd.params = vec!["so3\n--out /".into()];
         assert!(odd.check().unwrap_err().contains("selection.params[0]"));
         let mut long = ok.clone();
         long.scenes = vec!["x".repeat(MAX_NAME_LEN + 1)];
