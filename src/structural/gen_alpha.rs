@@ -47,7 +47,7 @@
 use super::SecondOrder;
 use super::newton::{self, NewtonOptions, Point};
 use super::state::State;
-use crate::integrate::{Failure, MethodInfo, MethodKind, Stats};
+use crate::integrate::{Failure, MethodInfo, Stats};
 
 /// The generalized-alpha method (Arnold & Brüls form).
 ///
@@ -91,12 +91,19 @@ use crate::integrate::{Failure, MethodInfo, MethodKind, Stats};
 /// ```
 #[derive(Debug, Clone)]
 pub struct GenAlpha {
-    rho_inf: f64,
-    alpha_m: f64,
-    alpha_f: f64,
-    beta: f64,
-    gamma: f64,
+    c: Coefficients,
     newton: NewtonOptions,
+}
+
+/// The coefficients of the generalized-alpha methods (this one and the index-3 form), all
+/// set by the spectral radius at infinity `rho_inf`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Coefficients {
+    pub rho_inf: f64,
+    pub alpha_m: f64,
+    pub alpha_f: f64,
+    pub beta: f64,
+    pub gamma: f64,
 }
 
 impl Default for GenAlpha {
@@ -108,41 +115,36 @@ impl Default for GenAlpha {
 
 /// `(alpha_m, alpha_f, beta, gamma)` of (G0), or an error naming `rho_inf` (shared with the
 /// index-3 form).
-pub(crate) fn parameters(rho_inf: f64, method: &str) -> Result<(f64, f64, f64, f64), String> {
-    if !(rho_inf.is_finite() && (0.0..=1.0).contains(&rho_inf)) {
-        return Err(format!("{method} rho_inf = {rho_inf} must be in [0, 1]"));
+impl Coefficients {
+    /// The coefficients for `rho_inf` in `[0, 1]` (Chung & Hulbert); an error names `method`
+    /// and the bad value.
+    pub fn new(rho_inf: f64, method: &str) -> Result<Coefficients, String> {
+        if !(rho_inf.is_finite() && (0.0..=1.0).contains(&rho_inf)) {
+            return Err(format!("{method} rho_inf = {rho_inf} must be in [0, 1]"));
+        }
+        let alpha_m = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
+        let alpha_f = rho_inf / (rho_inf + 1.0);
+        Ok(Coefficients {
+            rho_inf,
+            alpha_m,
+            alpha_f,
+            gamma: 0.5 - alpha_m + alpha_f,
+            beta: (1.0 - alpha_m + alpha_f).powi(2) / 4.0,
+        })
     }
-    let alpha_m = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
-    let alpha_f = rho_inf / (rho_inf + 1.0);
-    let gamma = 0.5 - alpha_m + alpha_f;
-    let beta = (1.0 - alpha_m + alpha_f).powi(2) / 4.0;
-    Ok((alpha_m, alpha_f, beta, gamma))
 }
 
 impl GenAlpha {
     /// The method for `rho_inf` in `[0, 1]`; an error names a bad `rho_inf` or Newton option.
     pub fn new(rho_inf: f64, newton: NewtonOptions) -> Result<Self, String> {
-        let (alpha_m, alpha_f, beta, gamma) = parameters(rho_inf, "gen_alpha")?;
+        let c = Coefficients::new(rho_inf, "gen_alpha")?;
         newton.validate()?;
-        Ok(GenAlpha {
-            rho_inf,
-            alpha_m,
-            alpha_f,
-            beta,
-            gamma,
-            newton,
-        })
+        Ok(GenAlpha { c, newton })
     }
 
-    /// `(rho_inf, alpha_m, alpha_f, beta, gamma)`.
-    pub fn parameters(&self) -> (f64, f64, f64, f64, f64) {
-        (
-            self.rho_inf,
-            self.alpha_m,
-            self.alpha_f,
-            self.beta,
-            self.gamma,
-        )
+    /// The method's coefficients.
+    pub fn parameters(&self) -> Coefficients {
+        self.c
     }
 
     /// The consistent initial acceleration (I1)/(I2) of `init` into `state.a` (`qdd_0`) and
@@ -172,7 +174,7 @@ impl GenAlpha {
     ) -> Result<(), Failure> {
         newton::check_step(t, h, "gen_alpha")?;
         state.assert_sizes(sys.dim(), state.n_constraints());
-        let (am, af, be, ga) = (self.alpha_m, self.alpha_f, self.beta, self.gamma);
+        let (am, af, be, ga) = (self.c.alpha_m, self.c.alpha_f, self.c.beta, self.c.gamma);
         // a_{n+1} = (af qdd_n - am a_n)/(1 - am) + (1 - af)/(1 - am) qdd_{n+1}   (G3)
         let ratio = (1.0 - af) / (1.0 - am);
         let w = &mut state.work;
@@ -207,18 +209,7 @@ impl GenAlpha {
 
     /// What the method is.
     pub fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: "gen_alpha",
-            order: 2,
-            stages: 1,
-            implicit: true,
-            symplectic: false,
-            lie_group: false,
-            energy_conserving: false,
-            adaptive: false,
-            kind: MethodKind::Structural,
-            twin_of: None,
-        }
+        newton::method_info("gen_alpha")
     }
 }
 

@@ -47,7 +47,7 @@
 use super::Constraints;
 use super::newton::{self, NewtonOptions, check_finite, lu_failure, ratio};
 use super::state::State;
-use crate::integrate::{Failure, MethodInfo, MethodKind, Stats};
+use crate::integrate::{Failure, MethodInfo, Stats};
 
 /// The index-3 generalized-alpha method for constrained systems.
 ///
@@ -106,11 +106,7 @@ use crate::integrate::{Failure, MethodInfo, MethodKind, Stats};
 /// ```
 #[derive(Debug, Clone)]
 pub struct GenAlphaI3 {
-    rho_inf: f64,
-    alpha_m: f64,
-    alpha_f: f64,
-    beta: f64,
-    gamma: f64,
+    c: super::gen_alpha::Coefficients,
     newton: NewtonOptions,
 }
 
@@ -124,28 +120,14 @@ impl Default for GenAlphaI3 {
 impl GenAlphaI3 {
     /// The method for `rho_inf` in `[0, 1]`; an error names a bad `rho_inf` or Newton option.
     pub fn new(rho_inf: f64, newton: NewtonOptions) -> Result<Self, String> {
-        let (alpha_m, alpha_f, beta, gamma) =
-            super::gen_alpha::parameters(rho_inf, "gen_alpha_i3")?;
+        let c = super::gen_alpha::Coefficients::new(rho_inf, "gen_alpha_i3")?;
         newton.validate()?;
-        Ok(GenAlphaI3 {
-            rho_inf,
-            alpha_m,
-            alpha_f,
-            beta,
-            gamma,
-            newton,
-        })
+        Ok(GenAlphaI3 { c, newton })
     }
 
-    /// `(rho_inf, alpha_m, alpha_f, beta, gamma)`.
-    pub fn parameters(&self) -> (f64, f64, f64, f64, f64) {
-        (
-            self.rho_inf,
-            self.alpha_m,
-            self.alpha_f,
-            self.beta,
-            self.gamma,
-        )
+    /// The method's coefficients.
+    pub fn parameters(&self) -> super::gen_alpha::Coefficients {
+        self.c
     }
 
     /// Consistent `qdd_0` and `lambda_0` from (I3) of `init` (into `state.a`, `state.aux`
@@ -163,7 +145,7 @@ impl GenAlphaI3 {
 
     /// `a_{n+1}`, `v_{n+1}`, `qdd_{n+1}` from `q_{n+1}` by (G1)-(G3), into the workspace.
     fn dependents(&self, h: f64, state: &mut State) {
-        let (am, af, be, ga) = (self.alpha_m, self.alpha_f, self.beta, self.gamma);
+        let (am, af, be, ga) = (self.c.alpha_m, self.c.alpha_f, self.c.beta, self.c.gamma);
         let w = &mut state.work;
         // a_{n+1} = (q_{n+1} - q_n - h v_n - h^2 (1/2 - beta) a_n) / (beta h^2)
         let c = 1.0 / (be * h * h);
@@ -200,7 +182,7 @@ impl GenAlphaI3 {
         newton::check_step(t, h, NAME)?;
         let (n, m) = (sys.dim(), sys.n_constraints());
         state.assert_sizes(n, m);
-        let (am, af, be, ga) = (self.alpha_m, self.alpha_f, self.beta, self.gamma);
+        let (am, af, be, ga) = (self.c.alpha_m, self.c.alpha_f, self.c.beta, self.c.gamma);
         let bh2 = be * h * h;
         let t1 = t + h;
         {
@@ -290,18 +272,7 @@ impl GenAlphaI3 {
 
     /// What the method is.
     pub fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: "gen_alpha_i3",
-            order: 2,
-            stages: 1,
-            implicit: true,
-            symplectic: false,
-            lie_group: false,
-            energy_conserving: false,
-            adaptive: false,
-            kind: MethodKind::Structural,
-            twin_of: None,
-        }
+        newton::method_info("gen_alpha_i3")
     }
 }
 

@@ -40,7 +40,7 @@
 use super::SecondOrder;
 use super::newton::{self, NewtonOptions, Point};
 use super::state::State;
-use crate::integrate::{Failure, MethodInfo, MethodKind, Stats};
+use crate::integrate::{Failure, MethodInfo, Stats};
 
 /// The HHT alpha method.
 ///
@@ -186,18 +186,7 @@ impl Hht {
 
     /// What the method is.
     pub fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: "hht",
-            order: 2,
-            stages: 1,
-            implicit: true,
-            symplectic: false,
-            lie_group: false,
-            energy_conserving: false,
-            adaptive: false,
-            kind: MethodKind::Structural,
-            twin_of: None,
-        }
+        newton::method_info("hht")
     }
 }
 

@@ -28,7 +28,7 @@
 use super::SecondOrder;
 use super::newton::{self, NewtonOptions, Point};
 use super::state::State;
-use crate::integrate::{Failure, MethodInfo, MethodKind, Stats};
+use crate::integrate::{Failure, MethodInfo, Stats};
 
 const BETA: f64 = 0.25;
 const GAMMA: f64 = 0.5;
@@ -145,18 +145,7 @@ impl Newmark {
 
     /// What the method is.
     pub fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: "newmark",
-            order: 2,
-            stages: 1,
-            implicit: true,
-            symplectic: false,
-            lie_group: false,
-            energy_conserving: false,
-            adaptive: false,
-            kind: MethodKind::Structural,
-            twin_of: None,
-        }
+        newton::method_info("newmark")
     }
 }
 

@@ -211,6 +211,24 @@ pub(crate) fn newton_failure(t: f64, method: &str, opts: &NewtonOptions) -> Fail
     )
 }
 
+/// The facts of a Newmark-family method named `name`: order 2, one implicit stage, neither
+/// symplectic nor energy-conserving in general (Newmark conserves a linear system's energy
+/// only), fixed step, of kind `structural`.
+pub(crate) fn method_info(name: &'static str) -> crate::integrate::MethodInfo {
+    crate::integrate::MethodInfo {
+        name,
+        order: 2,
+        stages: 1,
+        implicit: true,
+        symplectic: false,
+        lie_group: false,
+        energy_conserving: false,
+        adaptive: false,
+        kind: crate::integrate::MethodKind::Structural,
+        twin_of: None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -315,6 +315,17 @@ impl SecondOrder for Fe {
             let se = self.m_e * c_m
                 + self.g_e * (2.0 * w * c_c)
                 + (self.g_e * wd - self.m_e * (w * w) + k_e) * c_k;
+            for j in 0..6 {
+                let Some(i) = self.index(e, j) else { continue };
+                for k in 0..6 {
+                    if let Some(ik) = self.index(e, k) {
+                        s[(i, ik)] += se[(j, k)];
+                    }
+                }
+            }
+            if !free {
+                continue;
+            }
             // Free hub: the hub column of r_d and the hub row r_phi.
             let (md, gd, mv) = (self.m_e * d, self.g_e * d, self.m_e * dv);
             let col = gd * c_m + (self.g_e * dv * 2.0 - md * (2.0 * w)) * c_c;
@@ -324,20 +335,12 @@ impl SecondOrder for Fe {
                 + md * (2.0 * w * c_c)
                 + gd * c_m;
             for j in 0..6 {
-                let Some(i) = self.index(e, j) else { continue };
-                for k in 0..6 {
-                    if let Some(ik) = self.index(e, k) {
-                        s[(i, ik)] += se[(j, k)];
-                    }
-                }
-                if free {
+                if let Some(i) = self.index(e, j) {
                     s[(i, 0)] += col[j];
                     s[(0, i)] += row[j];
                 }
             }
-            if free {
-                s00 += d.dot(&md) * c_m + 2.0 * d.dot(&mv) * c_c;
-            }
+            s00 += d.dot(&md) * c_m + 2.0 * d.dot(&mv) * c_c;
         }
         if let Base::Free { j_hub, .. } = self.base {
             s[(0, 0)] = j_hub * c_m + s00;
