@@ -169,7 +169,7 @@ pub use crate::case::steps_dividing as divides;
 
 /// Output grid for a run: `(output interval, number of outputs, outputs per score point)`.
 /// Uses the sample grid when `h` (if fixed) divides `sample_every`, else the score grid.
-fn output_grid(grid: &Grid, h: Option<f64>) -> Result<(f64, u64, usize), String> {
+pub(crate) fn output_grid(grid: &Grid, h: Option<f64>) -> Result<(f64, u64, usize), String> {
     let n_score = divides(grid.t_end, grid.score_every).ok_or_else(|| {
         format!(
             "score_every = {} does not divide t_end = {}",
@@ -202,14 +202,14 @@ fn sample<S: Observable>(sys: &S, t: f64, x: &S::State) -> Sample<S::Obs> {
 /// Samples reserved up front: the whole output grid, up to 65536 (a longer grid grows the
 /// vector geometrically, never per step). Reserving the grid unbounded aborted the process on
 /// a fine sample grid over a long horizon (tests/fuzz.rs).
-fn reserve(n_out: u64) -> usize {
+pub(crate) fn reserve(n_out: u64) -> usize {
     n_out.min(1 << 16) as usize + 1
 }
 
 /// The `work_limit` failure of a run that needs `n` steps (fixed step) or output points
 /// (adaptive) where its budget allows `max_steps`: it fails at once, at `t = 0`, instead of
 /// integrating (and storing samples) up to the limit.
-fn over_budget(what: &str, n: u64, limits: &Limits) -> Option<Failure> {
+pub(crate) fn over_budget(what: &str, n: u64, limits: &Limits) -> Option<Failure> {
     (n > limits.max_steps).then(|| {
         Failure::new(
             crate::integrate::FailureKind::WorkLimit,

@@ -485,9 +485,9 @@ fn run_job(p: &dyn Problem, job: &Job) -> Done {
 fn fit_orders(problems: &[Box<dyn Problem>], records: &[Record]) -> Vec<FitRecord> {
     let mut fits = vec![];
     for p in problems {
-        let Some(claim) = p.accuracy_claim(p.primary_metric()) else {
+        if p.accuracy_claim(p.primary_metric()).is_none() {
             continue;
-        };
+        }
         let mut groups: BTreeMap<[usize; 3], Vec<&Record>> = BTreeMap::new();
         for r in records
             .iter()
@@ -505,6 +505,10 @@ fn fit_orders(problems: &[Box<dyn Problem>], records: &[Record]) -> Vec<FitRecor
                     )
                 })
                 .collect();
+            let Some(claim) = p.accuracy_claim_for(p.primary_metric(), &rs[0].key.formulation)
+            else {
+                continue;
+            };
             let f = order::fit(&pts, claim);
             fits.push(FitRecord {
                 key: crate::summary::RunKey::new(

@@ -1,11 +1,13 @@
-//! `[[gates]]` of a case file (cases/README.md, "`[[gates]]`"; `mbdbench gate`): a metric, one
-//! bound (`max` or `min`), a `where` selecting records by scene, variant names and ladder
-//! value, whether the quick tier evaluates it, and the baseline it was set from. Loading only
-//! checks their shape (names, finite bounds, scenes that exist, not both `dt` and `tol`); the
-//! gate command interprets them against a summary.
+//! `[[gates]]` of a case file (cases/README.md, "`[[gates]]`"; `mbdbench gate`): what a gate
+//! checks (`Check`: a metric and one bound, `max` or `min`, or an expected typed failure,
+//! `expect`), a `where` selecting records by scene, variant names and ladder value, whether the
+//! quick tier evaluates it, and the baseline a bound was set from. Loading only checks their
+//! shape (names, finite bounds, one form per gate, known failure kinds, scenes that exist, not
+//! both `dt` and `tol`); the gate command interprets them against a summary.
 use serde::Deserialize;
 
 use super::{Ctx, Res, Scene};
+use crate::integrate::FailureKind;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Bound {
@@ -13,6 +15,26 @@ pub enum Bound {
     Max(f64),
     /// The metric must be >= this.
     Min(f64),
+}
+
+/// What a gate checks of each record its `where` selects.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Check {
+    /// `metric` with `max` or `min`: the record's metric lies within the bound.
+    Bound { metric: String, bound: Bound },
+    /// `expect = { status = "failed", kind, before }`: the run ended in a typed failure of
+    /// `kind` at `t <= before` (a variant known to fail, e.g. a model that diverges).
+    Expect { kind: FailureKind, before: f64 },
+}
+
+impl Check {
+    /// The gated metric (None for an expected failure).
+    pub fn metric(&self) -> Option<&str> {
+        match self {
+            Check::Bound { metric, .. } => Some(metric),
+            Check::Expect { .. } => None,
+        }
+    }
 }
 
 /// A gate's `where`: each list is a set of accepted values, empty = any.
@@ -29,11 +51,12 @@ pub struct GateWhere {
 /// `[[gates]]` (shape-checked only: the gate command interprets them).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Gate {
-    pub metric: String,
-    pub bound: Bound,
+    pub check: Check,
     pub filter: GateWhere,
     /// Evaluated by `gate --quick` too.
     pub quick: bool,
+    /// The measured value a bound was set from (always None for `Check::Expect`), and the
+    /// factor between it and the bound.
     pub baseline: Option<f64>,
     pub margin: Option<f64>,
     pub commit: Option<String>,
@@ -42,9 +65,10 @@ pub struct Gate {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawGate {
-    metric: String,
+    metric: Option<String>,
     max: Option<f64>,
     min: Option<f64>,
+    expect: Option<RawExpect>,
     #[serde(rename = "where", default)]
     filter: RawWhere,
     #[serde(default)]
@@ -52,6 +76,16 @@ pub struct RawGate {
     baseline: Option<f64>,
     margin: Option<f64>,
     commit: Option<String>,
+}
+
+/// `expect = { status, kind, before }`: every key required, checked in `Ctx::gate` (so a
+/// missing one is named like a bad one).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawExpect {
+    status: Option<String>,
+    kind: Option<String>,
+    before: Option<f64>,
 }
 
 #[derive(Deserialize, Default)]
@@ -90,17 +124,46 @@ impl Ctx<'_> {
         formulations: &[&str],
     ) -> Res<Gate> {
         let key = |k: &str| format!("gates[{i}].{k}");
-        self.name(
-            &key("metric"),
-            &g.metric,
-            |c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_',
-            "a snake_case metric name",
-        )?;
-        let bound = match (g.max, g.min) {
-            (Some(x), None) => Bound::Max(self.finite(&key("max"), x)?),
-            (None, Some(x)) => Bound::Min(self.finite(&key("min"), x)?),
-            _ => {
-                return self.err(format!("gates[{i}]"), "expected exactly one of max, min");
+        let metric_given = g.metric.is_some();
+        let check = match (g.metric, g.expect) {
+            (_, Some(e)) => {
+                let present = [
+                    ("metric", metric_given),
+                    ("max", g.max.is_some()),
+                    ("min", g.min.is_some()),
+                    ("baseline", g.baseline.is_some()),
+                    ("margin", g.margin.is_some()),
+                ];
+                if let Some((k, _)) = present.iter().find(|(_, p)| *p) {
+                    return self.err(
+                        key(k),
+                        "not allowed with `expect`: an expected-failure gate has no metric, \
+                         bound, baseline or margin",
+                    );
+                }
+                self.expect(i, e)?
+            }
+            (Some(metric), None) => {
+                self.name(
+                    &key("metric"),
+                    &metric,
+                    |c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_',
+                    "a snake_case metric name",
+                )?;
+                let bound = match (g.max, g.min) {
+                    (Some(x), None) => Bound::Max(self.finite(&key("max"), x)?),
+                    (None, Some(x)) => Bound::Min(self.finite(&key("min"), x)?),
+                    _ => {
+                        return self.err(format!("gates[{i}]"), "expected exactly one of max, min");
+                    }
+                };
+                Check::Bound { metric, bound }
+            }
+            (None, None) => {
+                return self.err(
+                    format!("gates[{i}]"),
+                    "expected `metric` with `max` or `min`, or `expect`",
+                );
             }
         };
         let baseline = g
@@ -164,14 +227,63 @@ impl Ctx<'_> {
             );
         }
         Ok(Gate {
-            metric: g.metric,
-            bound,
+            check,
             filter,
             quick: g.quick,
             baseline,
             margin,
             commit: g.commit,
         })
+    }
+}
+
+impl Ctx<'_> {
+    /// `gates[i].expect`: status `"failed"`, a failure kind's name, a finite positive `before`.
+    fn expect(&self, i: usize, e: RawExpect) -> Res<Check> {
+        let key = |k: &str| format!("gates[{i}].expect.{k}");
+        match e.status.as_deref() {
+            Some("failed") => {}
+            Some(s) => {
+                return self.err(
+                    key("status"),
+                    format!("`{s}`; expected \"failed\" (the only status a gate can expect)"),
+                );
+            }
+            None => {
+                return self.err(
+                    key("status"),
+                    "missing; expected \"failed\" (the only status a gate can expect)",
+                );
+            }
+        }
+        let names: Vec<&str> = FailureKind::ALL.iter().map(|k| k.name()).collect();
+        let kind = match e.kind.as_deref() {
+            Some(s) => match FailureKind::from_name(s) {
+                Some(k) => k,
+                None => {
+                    return self.err(
+                        key("kind"),
+                        format!("`{s}`; expected a failure kind: {}", or_list(&names)),
+                    );
+                }
+            },
+            None => {
+                return self.err(
+                    key("kind"),
+                    format!("missing; expected a failure kind: {}", or_list(&names)),
+                );
+            }
+        };
+        let before = match e.before {
+            Some(x) => self.positive(&key("before"), x, "a time (or load parameter)")?,
+            None => {
+                return self.err(
+                    key("before"),
+                    "missing; expected the latest time (or load parameter) of the failure",
+                );
+            }
+        };
+        Ok(Check::Expect { kind, before })
     }
 }
 

@@ -57,8 +57,12 @@ pub use schema::{RawGrid, RawShared, RawStability};
 
 /// The only schema version this loader reads.
 pub const SCHEMA: i64 = 1;
-/// The four catalogue files compiled into the binary, sorted by name.
-const EMBEDDED: [(&str, &str); 4] = [
+/// The catalogue files compiled into the binary, sorted by name.
+const EMBEDDED: [(&str, &str); 5] = [
+    (
+        "cases/flexible_beam.toml",
+        include_str!("../../cases/flexible_beam.toml"),
+    ),
     (
         "cases/free_body.toml",
         include_str!("../../cases/free_body.toml"),

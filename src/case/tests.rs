@@ -57,7 +57,13 @@ fn embedded_files_load() {
     let names: Vec<&str> = cases.iter().map(|c| c.name.as_str()).collect();
     assert_eq!(
         names,
-        ["free_body", "gimbal_lock", "heavy_top", "nine_spring"]
+        [
+            "flexible_beam",
+            "free_body",
+            "gimbal_lock",
+            "heavy_top",
+            "nine_spring"
+        ]
     );
     for c in &cases {
         assert_eq!(c.file, format!("cases/{}.toml", c.name));
@@ -72,8 +78,10 @@ fn embedded_files_load() {
         );
         for s in &c.scenes {
             assert!(!s.ladders.order2_4.is_empty() && !s.ladders.tol.is_empty());
+            // Every class the full ladders use has one quick point.
             for class in OrderClass::ALL {
-                assert_eq!(s.quick.fixed(class).len(), 1, "{}/{}", c.name, s.name);
+                let want = usize::from(!s.ladders.fixed(class).is_empty());
+                assert_eq!(s.quick.fixed(class).len(), want, "{}/{}", c.name, s.name);
             }
             assert_eq!(s.quick.tol.len(), 1);
         }
@@ -505,7 +513,13 @@ fn other_validations() {
          baseline = 1.0e-9\nmargin = 3.0\ncommit = \"abc1234\"",
     );
     let c = load_str(LABEL, &ok).unwrap();
-    assert_eq!(c.gates[0].bound, Bound::Max(3.0e-9));
+    assert_eq!(
+        c.gates[0].check,
+        crate::case::gate::Check::Bound {
+            metric: "energy_drift_max".into(),
+            bound: Bound::Max(3.0e-9)
+        }
+    );
     assert_eq!(c.gates[0].filter.integrator, ["rk4", "gauss6"]);
     assert_eq!(c.gates[0].filter.dt, [1.0e-3]);
     error_at(
@@ -520,6 +534,85 @@ fn other_validations() {
         &gate("metric = \"energy_drift_max\"\nmax = 1.0\nwhere = { colour = \"red\" }"),
         "gates[0].where.colour",
     );
+}
+
+/// An expected-failure gate (`expect`) loads as `Check::Expect`; a gate of neither or both
+/// forms, a metric-form key beside `expect`, a status other than "failed", an unknown failure
+/// kind, a `before` that is not finite and positive, or a missing or unknown `expect` key is
+/// an error naming that key.
+#[test]
+fn expect_gate_shape() {
+    let bare = without_gates(NINE);
+    let gate = |body: &str| format!("{bare}\n[[gates]]\n{body}\n");
+    let expect = |inner: &str, extra: &str| {
+        gate(&format!(
+            "expect = {{ {inner} }}\nwhere = {{ formulation = \"body\" }}\n{extra}"
+        ))
+    };
+    let good = "status = \"failed\", kind = \"diverged\", before = 20.0";
+    let c = load_str(LABEL, &expect(good, "quick = true\ncommit = \"abc1234\"")).unwrap();
+    assert_eq!(
+        c.gates[0].check,
+        crate::case::gate::Check::Expect {
+            kind: crate::integrate::FailureKind::Diverged,
+            before: 20.0
+        }
+    );
+    assert!(c.gates[0].quick && c.gates[0].check.metric().is_none());
+    assert_eq!(c.gates[0].filter.formulation, ["body"]);
+    // Every failure kind's name is accepted.
+    for k in crate::integrate::FailureKind::ALL {
+        let inner = format!("status = \"failed\", kind = \"{}\", before = 1.0", k.name());
+        let c = load_str(LABEL, &expect(&inner, "")).unwrap();
+        assert!(
+            matches!(c.gates[0].check, crate::case::gate::Check::Expect { kind, .. } if kind == k)
+        );
+    }
+    // One form or the other.
+    let e = error_at(&gate("quick = true"), "gates[0]");
+    assert!(e.message.contains("`expect`"), "{e}");
+    for (extra, key) in [
+        ("metric = \"energy_drift_max\"", "gates[0].metric"),
+        ("max = 1.0", "gates[0].max"),
+        ("min = 1.0", "gates[0].min"),
+        ("baseline = 1.0", "gates[0].baseline"),
+        ("margin = 2.0", "gates[0].margin"),
+    ] {
+        let e = error_at(&expect(good, extra), key);
+        assert!(e.message.contains("not allowed with `expect`"), "{e}");
+    }
+    let bad = |inner: &str, key: &str| error_at(&expect(inner, ""), key);
+    let e = bad(
+        "status = \"ok\", kind = \"diverged\", before = 20.0",
+        "gates[0].expect.status",
+    );
+    assert!(e.message.contains("\"failed\" (the only status"), "{e}");
+    bad(
+        "kind = \"diverged\", before = 20.0",
+        "gates[0].expect.status",
+    );
+    let e = bad(
+        "status = \"failed\", kind = \"exploded\", before = 20.0",
+        "gates[0].expect.kind",
+    );
+    assert!(
+        e.message.contains("`exploded`")
+            && e.message.contains("singular_chart, non_finite")
+            && e.message.contains("diverged or bound_exceeded"),
+        "{e}"
+    );
+    bad("status = \"failed\", before = 20.0", "gates[0].expect.kind");
+    for before in ["0.0", "-1.0", "inf", "nan"] {
+        bad(
+            &format!("status = \"failed\", kind = \"diverged\", before = {before}"),
+            "gates[0].expect.before",
+        );
+    }
+    bad(
+        "status = \"failed\", kind = \"diverged\"",
+        "gates[0].expect.before",
+    );
+    bad(&format!("{good}, after = 1.0"), "gates[0].expect.after");
 }
 
 // The inputs hash covers the physics only: ladders, gates, title and sample_every do not

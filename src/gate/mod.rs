@@ -17,8 +17,14 @@
 //! the value crosses the bound. Wall time is never gated; deterministic work counts
 //! (`WORK_METRICS`, read from the record's `stats`) may be.
 //!
+//! A gate of the other form, `expect = { status = "failed", kind, before }` (`Check::Expect`),
+//! is for a variant known to fail: it is expanded and matched the same way, and fails for the
+//! same missing, stale and `n/a` records, but a point passes only when its run ended in a typed
+//! failure of `kind` at `t <= before`; a run that ended `ok`, or failed otherwise or later,
+//! fails. Its row's value is the outcome as text (`outcome`: `diverged at t = 12`, `ok`).
+//!
 //! Unusable input is a `GateError` (exit 2), never a failing row: a summary that cannot be read
-//! or parsed, an unknown metric name, a `where` value that names no registered variant or no
+//! or parsed, an unknown metric name (of a bound gate), a `where` value that names no registered variant or no
 //! ladder point, a `where` that expands to nothing in the tier being gated, a gate whose
 //! `baseline x margin` is not its bound (relative `BOUND_REL_TOL`), an unreadable baseline.
 //! Validation of names, values and bounds covers every gate; the expansion check covers the
@@ -33,7 +39,9 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use crate::case::gate::Check;
 use crate::case::{self, Bound, Case, Gate};
+use crate::integrate::FailureKind;
 use crate::problem::{Problem, Variant};
 use crate::summary::{Record, Status, Summary};
 
@@ -71,11 +79,16 @@ pub struct GateRow {
     pub dt: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub tol: Option<f64>,
-    /// The metric (or `rhs_evals`, `newton_iters` for baseline rows).
+    /// The metric (or `rhs_evals`, `newton_iters` for baseline rows; `expect failed (kind)`
+    /// for an expected-failure gate, `check_label`).
     pub metric: String,
     /// The value found (None: no record, or a null metric).
     pub value: Option<f64>,
-    /// The threshold as written, e.g. `<= 3.0e-9` or `<= 3 x baseline 1.2e-8`.
+    /// The value as text where it is no number: an expected-failure gate's outcome,
+    /// `diverged at t = 12` or `ok` (None: no record, or a metric row).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub outcome: Option<String>,
+    /// The threshold as written, e.g. `<= 3.0e-9`, `<= 3 x baseline 1.2e-8` or `before 20 s`.
     pub threshold: String,
     pub verdict: Verdict,
     /// Why it failed (stale reference, no record, null metric, regression ...), or empty.
@@ -228,12 +241,41 @@ pub fn metric_value(r: &Record, metric: &str) -> Option<Option<f64>> {
     Some(Some(count as f64))
 }
 
-/// `<= t` or `>= t`.
-fn threshold_text(b: Bound) -> String {
-    match b {
-        Bound::Max(t) => format!("<= {t:e}"),
-        Bound::Min(t) => format!(">= {t:e}"),
+/// The start of an expected-failure gate's `metric` column (`expect_label`).
+pub const EXPECT_PREFIX: &str = "expect failed";
+
+/// Whether a row comes from an expected-failure gate (`Check::Expect`).
+pub fn is_expect_row(r: &GateRow) -> bool {
+    r.metric.starts_with(EXPECT_PREFIX)
+}
+
+/// The `metric` column of a gate row: the metric, or `expect failed (diverged)`.
+fn check_label(c: &Check) -> String {
+    match c {
+        Check::Bound { metric, .. } => metric.clone(),
+        Check::Expect { kind, .. } => format!("{EXPECT_PREFIX} ({})", kind.name()),
     }
+}
+
+/// `<= t`, `>= t` or `before t s`.
+fn threshold_text(c: &Check) -> String {
+    match c {
+        Check::Bound {
+            bound: Bound::Max(t),
+            ..
+        } => format!("<= {t:e}"),
+        Check::Bound {
+            bound: Bound::Min(t),
+            ..
+        } => format!(">= {t:e}"),
+        Check::Expect { before, .. } => format!("before {} s", time_text(*before)),
+    }
+}
+
+/// A time as written (`20`, `12.5`), in exponent form when that is long.
+fn time_text(t: f64) -> String {
+    let s = format!("{t}");
+    if s.len() <= 10 { s } else { format!("{t:.4e}") }
 }
 
 /// A failure's one-line description.
@@ -301,7 +343,7 @@ fn expand<'p>(
                 continue;
             }
             matching += 1;
-            if per_variant(&g.metric) {
+            if g.check.metric().is_some_and(per_variant) {
                 points.push(Point {
                     problem,
                     variant: v,
@@ -391,8 +433,10 @@ impl<'a> RecordIndex<'a> {
     /// The record of a point; among several, the first that carries `metric`. A stability
     /// record is a candidate only when it carries the metric: the study's other records at a
     /// step or tolerance (a long-horizon run, a sensitivity run) are not the catalogue's
-    /// ladder runs, and must not stand in for a missing one.
-    fn find(&self, case: &str, p: &Point, metric: &str) -> Option<&'a Record> {
+    /// ladder runs, and must not stand in for a missing one. Without a metric (an
+    /// expected-failure gate) the summary's first record of the point.
+    fn find(&self, case: &str, p: &Point, metric: Option<&str>) -> Option<&'a Record> {
+        let carries = |r: &Record| metric.is_some_and(|m| r.metrics.contains_key(m));
         let v = p.variant;
         let list = self.map.get(&(
             case,
@@ -407,13 +451,11 @@ impl<'a> RecordIndex<'a> {
                 Some(want) => x.is_some_and(|x| same_value(x, want)),
                 None => r.dt.is_none() && r.tol.is_none(),
             };
-            here && (!from_stability || r.metrics.contains_key(metric))
+            here && (!from_stability || carries(r))
         };
         let mut candidates = list.iter().filter(at).map(|(r, _)| *r);
         let first = candidates.clone().next();
-        candidates
-            .find(|r| r.metrics.contains_key(metric))
-            .or(first)
+        candidates.find(|r| carries(r)).or(first)
     }
 }
 
@@ -516,11 +558,13 @@ pub fn evaluate(
     let known = known_metrics(summary, stability);
     for c in cases {
         for (i, g) in c.gates.iter().enumerate() {
-            if !known.contains(&g.metric) {
+            if let Some(metric) = g.check.metric()
+                && !known.contains(metric)
+            {
                 return Err(GateError::UnknownMetric {
                     file: c.file.clone(),
                     index: i,
-                    metric: g.metric.clone(),
+                    metric: metric.to_string(),
                     known: known.iter().cloned().collect::<Vec<_>>().join(", "),
                 });
             }
@@ -565,7 +609,7 @@ pub fn evaluate(
                     rows.push(row);
                     continue;
                 }
-                let rec = index.find(&c.name, &p, &g.metric);
+                let rec = index.find(&c.name, &p, g.check.metric());
                 let mut row = judge(c, g, &p, rec, &mut refs, stability.is_some());
                 if rec.is_none() && !summary.records.is_empty() {
                     row.note.push_str(&tier_hint(cases, summary, opts.quick));
@@ -610,7 +654,7 @@ fn skip_reason(
             .filter(|sel| !sel.admits(&key))
             .cloned()
     };
-    if !per_variant(&g.metric) {
+    if !g.check.metric().is_some_and(per_variant) {
         return outside(summary)
             .map(|sel| format!("not run: outside the run's selection ({})", sel.flags()));
     }
@@ -657,9 +701,10 @@ fn judge(
         ),
         dt: p.value.filter(|_| !v.info.adaptive),
         tol: p.value.filter(|_| v.info.adaptive),
-        metric: g.metric.clone(),
+        metric: check_label(&g.check),
         value: None,
-        threshold: threshold_text(g.bound),
+        outcome: None,
+        threshold: threshold_text(&g.check),
         verdict: Verdict::Fail,
         note: String::new(),
     };
@@ -674,77 +719,127 @@ fn judge(
         );
         return row;
     };
-    let value = metric_value(r, &g.metric);
-    row.value = value.flatten();
+    match &g.check {
+        Check::Bound { metric, .. } => row.value = metric_value(r, metric).flatten(),
+        Check::Expect { .. } => row.outcome = Some(outcome_text(r)),
+    }
+    if let Some(why) = unusable(c, p, r, refs) {
+        row.note = why;
+        return row;
+    }
+    match &g.check {
+        Check::Bound { metric, bound } => judge_bound(&mut row, r, metric, *bound),
+        Check::Expect { kind, before } => judge_expect(&mut row, r, *kind, *before),
+    }
+    row
+}
+
+/// Why a point's record cannot be judged whatever the gate checks: it is stale (other
+/// physics, another reference file) or `n/a`.
+fn unusable(c: &Case, p: &Point, r: &Record, refs: &mut ReferenceHashes) -> Option<String> {
     if r.inputs_sha256 != p.problem.inputs_sha256() {
-        row.note = format!(
+        return Some(format!(
             "stale: the record's inputs_sha256 {} is not the case's current {} (rerun)",
             short(&r.inputs_sha256),
             short(p.problem.inputs_sha256())
-        );
-        return row;
+        ));
     }
     // A per-variant study record judged against an on-the-fly reference carries no stored
     // reference hash: only its physics hash can be stale.
     let no_stored_reference = p.value.is_none() && r.reference_sha256.is_none();
     match refs.get(c, p.problem) {
         _ if no_stored_reference => {}
-        Err(e) => {
-            row.note = format!("stale: {e}");
-            return row;
-        }
+        Err(e) => return Some(format!("stale: {e}")),
         Ok(sha) if r.reference_sha256.as_deref() != Some(sha.as_str()) => {
-            row.note = format!(
+            return Some(format!(
                 "stale: the record's reference_sha256 {} is not the current reference file's {} \
                  (rerun)",
                 r.reference_sha256.as_deref().map_or("null", short),
                 short(sha)
-            );
-            return row;
+            ));
         }
         Ok(_) => {}
     }
-    match r.status {
-        Status::NotApplicable => {
-            row.note = format!("n/a: {}", r.reason.as_deref().unwrap_or("no reason given"));
-            return row;
-        }
-        Status::Failed => {
-            row.note = failure_text(r);
-            return row;
-        }
-        Status::Ok => {}
+    (r.status == Status::NotApplicable)
+        .then(|| format!("n/a: {}", r.reason.as_deref().unwrap_or("no reason given")))
+}
+
+/// A bound gate's verdict on a current, applicable record: the run ended `ok` and its
+/// metric lies within the bound.
+fn judge_bound(row: &mut GateRow, r: &Record, metric: &str, bound: Bound) {
+    if r.status == Status::Failed {
+        row.note = failure_text(r);
+        return;
     }
-    let x = match value {
+    let x = match metric_value(r, metric) {
         None => {
             row.note = "metric absent from the record (it does not apply to this case)".into();
-            return row;
+            return;
         }
         Some(None) => {
             row.note = format!(
                 "null: {}",
                 r.metric_reasons
-                    .get(&g.metric)
+                    .get(metric)
                     .map_or("no reason given", String::as_str)
             );
-            return row;
+            return;
         }
         Some(Some(x)) => x,
     };
-    let pass = match g.bound {
+    let pass = match bound {
         Bound::Max(t) => x <= t,
         Bound::Min(t) => x >= t,
     };
     if pass {
         row.verdict = Verdict::Pass;
     } else {
-        row.note = match g.bound {
+        row.note = match bound {
             Bound::Max(t) if t > 0.0 => format!("{:.3}x the maximum", x / t),
             Bound::Max(_) => "above the maximum".into(),
             Bound::Min(_) => "below the minimum".into(),
         };
     }
-    row
+}
+
+/// An expected-failure gate's verdict on a current, applicable record: a pass only for a
+/// typed failure of `kind` at `t <= before`.
+fn judge_expect(row: &mut GateRow, r: &Record, kind: FailureKind, before: f64) {
+    let expected = format!("expected {} before {} s", kind.name(), time_text(before));
+    match (&r.status, &r.failure) {
+        (Status::Failed, Some(f)) if f.kind == kind && f.t <= before => {
+            row.verdict = Verdict::Pass;
+        }
+        (Status::Failed, Some(f)) if f.kind == kind => {
+            row.note = format!(
+                "{} at t = {}, too late: {expected}",
+                kind.name(),
+                time_text(f.t)
+            );
+        }
+        (Status::Failed, Some(f)) => {
+            row.note = format!(
+                "failed with {} at t = {}: {}; {expected}",
+                f.kind.name(),
+                time_text(f.t),
+                f.message
+            );
+        }
+        (Status::Failed, None) => {
+            row.note = format!("failed without a typed failure; {expected}");
+        }
+        _ => row.note = format!("ran to t_end without failing; {expected}"),
+    }
+}
+
+/// An expected-failure gate's value: the failure's kind and time, or the status.
+fn outcome_text(r: &Record) -> String {
+    match (&r.status, &r.failure) {
+        (_, Some(f)) => format!("{} at t = {}", f.kind.name(), time_text(f.t)),
+        (Status::Ok, None) => "ok".into(),
+        (Status::Failed, None) => "failed".into(),
+        (Status::NotApplicable, None) => "n/a".into(),
+    }
 }
 
 #[cfg(test)]

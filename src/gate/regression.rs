@@ -18,7 +18,7 @@
 //! Wall time is never compared.
 //!
 //! Baseline rows are recognised by their threshold text, which always says `baseline`
-//! (gate thresholds are `<= x` / `>= x`).
+//! (gate thresholds are `<= x` / `>= x`, or `before t s` for an expected failure).
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -78,6 +78,7 @@ fn row(r: &Record, metric: &str, value: Option<f64>, threshold: String) -> GateR
         tol: r.tol,
         metric: metric.into(),
         value,
+        outcome: None,
         threshold,
         verdict: Verdict::Pass,
         note: String::new(),
@@ -92,6 +93,7 @@ fn scene_row(case: &str, scene: &str, metric: &str, threshold: &str, note: Strin
         tol: None,
         metric: metric.into(),
         value: None,
+        outcome: None,
         threshold: threshold.into(),
         verdict: Verdict::Fail,
         note,
@@ -160,7 +162,10 @@ pub fn compare_baseline(
                 .or_insert_with(|| load_reference(cases, references, &r.key.case, &r.key.scene));
             if let Ok(reference) = loaded {
                 for (m, old, new) in pairs {
-                    let floor = FLOOR_CLAIMS * reference.accuracy_claim(m).unwrap_or(f64::INFINITY);
+                    let floor = FLOOR_CLAIMS
+                        * reference
+                            .accuracy_claim_for(m, &r.key.formulation)
+                            .unwrap_or(f64::INFINITY);
                     if !(old > floor && new > floor) {
                         continue;
                     }

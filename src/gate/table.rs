@@ -20,6 +20,9 @@ fn variant(r: &GateRow) -> String {
 }
 
 fn value(r: &GateRow) -> String {
+    if let Some(o) = &r.outcome {
+        return o.clone();
+    }
     match r.value {
         None => "-".into(),
         Some(x) if WORK_METRICS.contains(&r.metric.as_str()) && x.fract() == 0.0 => {

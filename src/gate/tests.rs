@@ -27,7 +27,11 @@ fn rec_mut<'a>(s: &'a mut Summary, integrator: &str, dt: f64) -> &'a mut Record 
 /// record off them (a full-ladder point) or no ladder record at all makes it not quick.
 #[test]
 fn quick_summary_is_recognised() {
-    let cases = case::embedded().unwrap();
+    let cases: Vec<_> = case::embedded()
+        .unwrap()
+        .into_iter()
+        .filter(|c| c.model == "rigid_body")
+        .collect();
     let plans = crate::model::rigid_body::plan::plans(&cases, &[], &[]).unwrap();
     let p = plans
         .iter()
@@ -376,4 +380,177 @@ fn missing_point_names_the_tier() {
         }
     }
     assert!(seen_hint, "no missing point on the other tier");
+}
+
+/// An expected-failure gate on nine_spring's quick rk4 point: diverge before 20 s.
+const EXPECT_DIVERGED: &str = "[[gates]]\nexpect = { status = \"failed\", kind = \"diverged\", \
+     before = 20.0 }\nwhere = { scene = \"two_angles\", param = \"so3\", integrator = \"rk4\", \
+     formulation = \"body\", dt = 1.0e-2 }\nquick = true\n";
+
+/// The summary of `passing`, with its quick rk4 run failed as `kind` at `t` (None: left ok).
+fn failed_at(c: &Case, failure: Option<(crate::integrate::FailureKind, f64)>) -> Summary {
+    let mut s = passing(c);
+    if let Some((kind, t)) = failure {
+        let r = rec_mut(&mut s, "rk4", 1.0e-2);
+        r.status = Status::Failed;
+        r.failure = Some(crate::integrate::Failure::new(
+            kind,
+            t,
+            "the bound was crossed",
+        ));
+    }
+    s
+}
+
+/// An expected-failure gate passes only on a typed failure of its kind at `t <= before`:
+/// `diverged` at t = 12 (and at exactly 20) passes; a run that ended ok, `non_finite` at
+/// t = 12 and `diverged` at t = 25 fail, each saying what happened and what was expected.
+#[test]
+fn expected_failure_passes_only_on_its_kind_in_time() {
+    use crate::integrate::FailureKind::{Diverged, NonFinite};
+    let c = fixture::with_gates("nine_spring", EXPECT_DIVERGED);
+    let eval = |f| {
+        let rows = evaluate(
+            std::slice::from_ref(&c),
+            &failed_at(&c, f),
+            None,
+            &opts(true),
+        );
+        let rows = rows.unwrap();
+        assert_eq!(rows.len(), 1, "{rows:?}");
+        rows.into_iter().next().unwrap()
+    };
+    let r = eval(Some((Diverged, 12.0)));
+    assert_eq!((r.verdict, r.note.as_str()), (Verdict::Pass, ""));
+    assert_eq!(
+        (
+            r.metric.as_str(),
+            r.outcome.as_deref(),
+            r.threshold.as_str(),
+            r.value
+        ),
+        (
+            "expect failed (diverged)",
+            Some("diverged at t = 12"),
+            "before 20 s",
+            None
+        )
+    );
+    assert!(is_expect_row(&r) && !is_baseline_row(&r));
+    assert_eq!(eval(Some((Diverged, 20.0))).verdict, Verdict::Pass);
+
+    let r = eval(None);
+    assert_eq!(r.verdict, Verdict::Fail);
+    assert_eq!(r.outcome.as_deref(), Some("ok"));
+    assert_eq!(
+        r.note,
+        "ran to t_end without failing; expected diverged before 20 s"
+    );
+
+    let r = eval(Some((NonFinite, 12.0)));
+    assert_eq!(r.verdict, Verdict::Fail);
+    assert_eq!(r.outcome.as_deref(), Some("non_finite at t = 12"));
+    assert_eq!(
+        r.note,
+        "failed with non_finite at t = 12: the bound was crossed; expected diverged before 20 s"
+    );
+
+    let r = eval(Some((Diverged, 25.0)));
+    assert_eq!(r.verdict, Verdict::Fail);
+    assert_eq!(
+        r.note,
+        "diverged at t = 25, too late: expected diverged before 20 s"
+    );
+}
+
+/// An expected-failure gate is judged beside the bound gates, one row per matched record, in
+/// the verdict line and the exit code; like theirs, its point fails without a record or with
+/// a stale one, and its `where` must match some point (else bad input).
+#[test]
+fn expected_failure_counts_like_a_bound_gate() {
+    use crate::integrate::FailureKind::Diverged;
+    let c = fixture::with_gates(
+        "nine_spring",
+        &format!("{}\n{EXPECT_DIVERGED}", fixture::GATES),
+    );
+    let cases = std::slice::from_ref(&c);
+    // The bound gate on the same run now sees a failed run.
+    let s = failed_at(&c, Some((Diverged, 12.0)));
+    let rows = evaluate(cases, &s, None, &opts(true)).unwrap();
+    assert_eq!(rows.len(), 4);
+    assert_eq!(verdict_line(&rows), "3 passed, 1 failed, 0 skipped");
+    assert_eq!(
+        find(&rows, "rotation_error_max", "so3").note,
+        "run failed: diverged at t = 12: the bound was crossed"
+    );
+    assert_eq!(
+        find(&rows, "expect failed (diverged)", "so3").verdict,
+        Verdict::Pass
+    );
+    // Without the record.
+    let mut s = failed_at(&c, Some((Diverged, 12.0)));
+    s.records.retain(|r| r.dt != Some(1.0e-2));
+    let rows = evaluate(cases, &s, None, &opts(true)).unwrap();
+    let r = find(&rows, "expect failed (diverged)", "so3");
+    assert_eq!((r.verdict, r.outcome.as_deref()), (Verdict::Fail, None));
+    assert!(r.note.starts_with("no record in the summary"), "{}", r.note);
+    assert_eq!(exit_code(&rows), 1);
+    // A stale record does not pass, whatever it says.
+    let mut s = failed_at(&c, Some((Diverged, 12.0)));
+    rec_mut(&mut s, "rk4", 1.0e-2).inputs_sha256 = "0".repeat(64);
+    let rows = evaluate(cases, &s, None, &opts(true)).unwrap();
+    let r = find(&rows, "expect failed (diverged)", "so3");
+    assert_eq!(r.verdict, Verdict::Fail);
+    assert!(r.note.starts_with("stale"), "{}", r.note);
+    // A `where` matching no point of the tier is bad input, as for a bound gate.
+    let c = fixture::with_gates(
+        "nine_spring",
+        &EXPECT_DIVERGED.replace("dt = 1.0e-2", "dt = 5.0e-3"),
+    );
+    let e = evaluate(&[c], &s, None, &opts(true)).unwrap_err();
+    assert!(
+        matches!(e, GateError::Where { .. }) && e.to_string().contains("gates[0].where"),
+        "{e}"
+    );
+}
+
+/// The printed table shows an expected-failure gate's label, outcome and bound, and why a
+/// failing one failed.
+#[test]
+fn expected_failure_renders() {
+    use crate::integrate::FailureKind::Diverged;
+    let c = fixture::with_gates("nine_spring", EXPECT_DIVERGED);
+    let rows = evaluate(
+        std::slice::from_ref(&c),
+        &failed_at(&c, Some((Diverged, 12.0))),
+        None,
+        &opts(true),
+    )
+    .unwrap();
+    let t = table(&rows);
+    let line = t.lines().find(|l| l.contains("PASS")).unwrap();
+    for part in [
+        "two_angles/so3/rk4/body dt=1e-2",
+        "expect failed (diverged)",
+        "diverged at t = 12",
+        "before 20 s",
+    ] {
+        assert!(line.contains(part), "{part} not in {line}");
+    }
+    assert_eq!(t.lines().last(), Some("1 passed, 0 failed, 0 skipped"));
+    let ok = failed_at(&c, None);
+    let rows = evaluate(&[c], &ok, None, &opts(true)).unwrap();
+    let t = table(&rows);
+    let line = t.lines().find(|l| l.contains("FAIL")).unwrap();
+    for part in [
+        "expect failed (diverged)",
+        " ok ",
+        "before 20 s",
+        "FAIL  ran to t_end without failing; expected diverged before 20 s",
+    ] {
+        assert!(line.contains(part), "{part} not in {line}");
+    }
+    // The row, with its outcome, survives a JSON round trip.
+    let back: GateRow = serde_json::from_str(&serde_json::to_string(&rows[0]).unwrap()).unwrap();
+    assert_eq!(back, rows[0]);
 }

@@ -1,11 +1,13 @@
 //! Validation of the `[[gates]]` of the case files against what exists: the metric names a
 //! summary can hold (`KNOWN_METRIC_LISTS` and every name in the records), the registered
 //! parameterizations, integrators and formulations, the ladder points of the selected scenes
-//! (either tier), and the consistency of a bound with its `baseline x margin`. Every failure is
+//! (either tier), and the consistency of a bound with its `baseline x margin` (the metric and
+//! bound checks apply to bound gates only; an expected-failure gate has neither). Every failure is
 //! a `GateError` naming the case file, the gate (`gates[i]`), the key and the value.
 use std::collections::BTreeSet;
 
 use super::{BOUND_REL_TOL, GateError, KNOWN_METRIC_LISTS, all_records, same_value};
+use crate::case::gate::Check;
 use crate::case::{self, Bound, Case, Gate, GateWhere, OrderClass};
 use crate::problem::Variant;
 use crate::summary::Summary;
@@ -36,9 +38,17 @@ pub(super) fn check_threshold(c: &Case, index: usize, g: &Gate) -> Result<(), Ga
         key: key.into(),
         message,
     };
-    let (key, t) = match g.bound {
-        Bound::Max(t) => ("max", t),
-        Bound::Min(t) => ("min", t),
+    // An expected-failure gate has no bound (loading refuses a baseline or margin on it).
+    let (key, t) = match g.check {
+        Check::Bound {
+            bound: Bound::Max(t),
+            ..
+        } => ("max", t),
+        Check::Bound {
+            bound: Bound::Min(t),
+            ..
+        } => ("min", t),
+        Check::Expect { .. } => return Ok(()),
     };
     match (g.baseline, g.margin) {
         (None, None) => Ok(()),

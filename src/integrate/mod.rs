@@ -141,6 +141,22 @@ pub enum FailureKind {
 }
 
 impl FailureKind {
+    /// Every kind, in declaration order.
+    pub const ALL: [FailureKind; 7] = [
+        FailureKind::SingularChart,
+        FailureKind::NonFinite,
+        FailureKind::NewtonFailure,
+        FailureKind::StepSizeUnderflow,
+        FailureKind::WorkLimit,
+        FailureKind::Diverged,
+        FailureKind::BoundExceeded,
+    ];
+
+    /// The kind named `name` (`FailureKind::name`), if any.
+    pub fn from_name(name: &str) -> Option<FailureKind> {
+        FailureKind::ALL.into_iter().find(|k| k.name() == name)
+    }
+
     /// The kind's name as the files write it (snake_case).
     pub fn name(self) -> &'static str {
         match self {

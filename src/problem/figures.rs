@@ -85,6 +85,8 @@ pub enum Split {
     ParamGroup,
     /// One panel per parameterization group and formulation.
     ParamGroupFormulation,
+    /// One panel per formulation (a family whose formulations are its main axis).
+    Formulation,
 }
 
 /// A group of parameterizations drawn in one panel.

@@ -317,6 +317,13 @@ pub trait Problem: Send + Sync {
     fn reference_sha256(&self) -> Option<&str>;
     /// The attached reference's accuracy claim for `metric` (the floor of order fits).
     fn accuracy_claim(&self, metric: &str) -> Option<f64>;
+    /// The claim for `metric` as it applies to the runs of one formulation (a family whose
+    /// reference holds one self-convergence track per formulation); the scene's claim by
+    /// default.
+    fn accuracy_claim_for(&self, metric: &str, formulation: &str) -> Option<f64> {
+        let _ = formulation;
+        self.accuracy_claim(metric)
+    }
     /// One run. `Err` when the run cannot start (e.g. its step count is over the budget).
     fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String>;
     /// Computes the scene's reference (its primary trajectory, the cross-check by a run that

@@ -669,10 +669,73 @@ mod tests {
             tol: None,
             metric: metric.into(),
             value: Some(1.0),
+            outcome: None,
             threshold: "<= 1".into(),
             verdict,
             note: String::new(),
         }
+    }
+
+    /// An expected-failure gate row shows in the case's gate table (HTML and markdown) as
+    /// its label, outcome and bound, and colours the gated run's status cell.
+    #[test]
+    fn expect_gate_renders() {
+        let s = fixture::summary();
+        let dir = fixture::temp_dir("expect-gates");
+        let expect = |dt: f64, outcome: &str, verdict: Verdict| GateRow {
+            key: crate::summary::RunKey::new(fixture::CASE, "large", "euler_zxz", "rk4", "body"),
+            dt: Some(dt),
+            tol: None,
+            metric: "expect failed (singular_chart)".into(),
+            value: None,
+            outcome: Some(outcome.into()),
+            threshold: "before 0.55 s".into(),
+            verdict,
+            note: String::new(),
+        };
+        let mut late = expect(1e-2, "singular_chart at t = 0.6", Verdict::Fail);
+        late.note =
+            "singular_chart at t = 0.6, too late: expected singular_chart before 0.55 s".into();
+        let rows = vec![
+            expect(2e-2, "singular_chart at t = 0.5", Verdict::Pass),
+            late,
+        ];
+        let page = build_page(&s, &dir, &[], Some(&rows), None);
+        let c = &page.cases[0];
+        let g = c.gates.as_ref().unwrap();
+        let col = |name: &str| g.header.iter().position(|h| h == name).unwrap();
+        assert_eq!(g.rows.len(), 2);
+        assert_eq!(
+            g.rows[0][col("metric")].text,
+            "expect failed (singular_chart)"
+        );
+        assert_eq!(g.rows[0][col("value")].text, "singular_chart at t = 0.5");
+        assert_eq!(g.rows[0][col("threshold")].text, "before 0.55 s");
+        let large = c.scenes.iter().find(|sc| sc.name == "large").unwrap();
+        let m = &large.matrix;
+        let status = m.header.iter().position(|h| h == "status").unwrap();
+        let tone = |step: &str| {
+            m.rows
+                .iter()
+                .find(|r| r[0].text == "euler_zxz" && r[3].text == step)
+                .map(|r| r[status].tone)
+        };
+        assert_eq!(tone("dt 2e-2"), Some(tables::Tone::Pass));
+        assert_eq!(tone("dt 1e-2"), Some(tables::Tone::Fail));
+        let html = html::render(&page);
+        for part in [
+            "expect failed (singular_chart)",
+            "singular_chart at t = 0.5",
+            "before 0.55 s",
+        ] {
+            assert!(html.contains(part), "{part} not in the page");
+        }
+        let md = markdown::render(&page);
+        assert!(
+            md.contains("singular_chart at t = 0.6") && md.contains("Gates: 1 passed, 1 failed"),
+            "{md}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// Gated cells are coloured by verdict (a gated run at a coarser step gets its own row),

@@ -153,6 +153,15 @@ pub fn panels(sel: Selection, family: &Family) -> Vec<Panel> {
             })
             .collect(),
         Split::ParamGroup => by_group(),
+        Split::Formulation => family
+            .axes
+            .formulations
+            .iter()
+            .map(|&f| Panel {
+                formulation: Some(f),
+                ..Panel::part(sel, f, &format!("{f} formulation"))
+            })
+            .collect(),
         Split::ParamGroupFormulation => by_group()
             .into_iter()
             .flat_map(|p| {

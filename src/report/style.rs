@@ -22,7 +22,7 @@ use plotters::style::RGBColor;
 use crate::problem::{Axis, axis_position};
 
 /// The integrator colours, in `axis_names(Axis::Integrator)` order.
-const INTEGRATOR_COLOURS: [RGBColor; 16] = [
+const INTEGRATOR_COLOURS: [RGBColor; 20] = [
     RGBColor(127, 127, 127), // euler: grey
     RGBColor(31, 119, 180),  // rk4: blue
     RGBColor(255, 127, 14),  // dopri5: orange
@@ -38,7 +38,11 @@ const INTEGRATOR_COLOURS: [RGBColor; 16] = [
     RGBColor(0, 100, 100),   // implicit_midpoint_kahan: dark teal
     RGBColor(120, 60, 0),    // gauss6_kahan: dark brown
     RGBColor(0, 90, 75),     // simo_wong_kahan: dark sea green
-    RGBColor(120, 105, 0),   // the next family's own method: dark olive
+    RGBColor(120, 105, 0),   // newmark (flexible beam): dark olive
+    RGBColor(200, 0, 120),   // hht: magenta
+    RGBColor(0, 170, 170),   // gen_alpha: teal
+    RGBColor(0, 40, 140),    // gen_alpha_i3: navy
+    RGBColor(0, 255, 127),   // the next registered method: spring green
 ];
 
 /// Extra colours for integrators past the palette.

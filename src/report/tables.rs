@@ -257,6 +257,22 @@ fn tone(gates: Option<&[GateRow]>, matched: &[&GateRow], metric: &str) -> Tone {
     }
 }
 
+/// The status cell's tone: by the expected-failure gates of the run (`gate::is_expect_row`),
+/// plain when none gates it.
+fn status_tone(matched: &[&GateRow]) -> Tone {
+    let mine: Vec<_> = matched
+        .iter()
+        .filter(|g| crate::gate::is_expect_row(g) && g.verdict != Verdict::Skip)
+        .collect();
+    if mine.is_empty() {
+        Tone::Plain
+    } else if mine.iter().any(|g| g.verdict == Verdict::Fail) {
+        Tone::Fail
+    } else {
+        Tone::Pass
+    }
+}
+
 /// The runs of a variant in its scene's matrix: its finest ladder point (the terminal
 /// table's row), then every gated run at another point.
 pub fn shown<'a>(v: &data::VariantRuns<'a>, gates: Option<&[GateRow]>) -> Vec<&'a Record> {
@@ -301,7 +317,11 @@ pub fn matrix(cv: &CaseView, sv: &SceneView, gates: Option<&[GateRow]>) -> Table
                 Cell::plain(&v.key.integrator),
                 Cell::plain(&v.key.formulation),
                 Cell::plain(step_label(r)),
-                Cell::plain(status),
+                Cell {
+                    text: status,
+                    tone: status_tone(&matched),
+                    full: None,
+                },
             ];
             for m in &metrics {
                 let text = match r.metrics.get(m) {
@@ -410,7 +430,7 @@ pub fn gate_table(cv: &CaseView, gates: Option<&[GateRow]>) -> Option<Table> {
                 Cell::plain(&g.key.formulation),
                 Cell::plain(step),
                 Cell::plain(&g.metric),
-                Cell::plain(opt(g.value)),
+                Cell::plain(g.outcome.clone().unwrap_or_else(|| opt(g.value))),
                 Cell::plain(&g.threshold),
                 Cell {
                     text: match g.verdict {

@@ -48,6 +48,7 @@ pub mod gen_alpha_i3;
 pub mod hht;
 mod init;
 pub mod lu;
+pub mod method;
 pub mod newmark;
 pub mod newton;
 pub mod state;

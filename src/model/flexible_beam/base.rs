@@ -77,6 +77,21 @@ impl Base {
     }
 
     /// The times where the motion's derivatives jump: `T` of the spin-up, `t_off` of the hub.
+    /// The base as it acts on the segment `[a, b)` between two breakpoints: a free hub's
+    /// torque made constant at its value there, so that no evaluation at the segment's end
+    /// (an implicit step's end point, a Runge-Kutta stage) sees the next segment's torque;
+    /// a prescribed motion is itself (it is continuous with its rate and acceleration).
+    pub fn on_segment(&self, a: f64, b: f64) -> Base {
+        match *self {
+            Base::Free { j_hub, .. } => Base::Free {
+                j_hub,
+                torque: self.torque(0.5 * (a + b)),
+                t_off: f64::INFINITY,
+            },
+            s => s,
+        }
+    }
+
     pub fn breakpoint(&self) -> f64 {
         match *self {
             Base::SpinUp { t_up, .. } => t_up,

@@ -347,3 +347,28 @@ impl SecondOrder for Fe {
         }
     }
 }
+
+impl super::observe::Beamlike for Fe {
+    fn beam(&self) -> Beam {
+        self.beam
+    }
+    fn base(&self) -> Base {
+        self.base
+    }
+    fn tip_deflection(&self, q: &DVector<f64>) -> f64 {
+        Fe::tip_deflection(self, q)
+    }
+    fn tip_axial(&self, q: &DVector<f64>) -> f64 {
+        Fe::tip_axial(self, q)
+    }
+    fn hub(&self, t: f64, q: &DVector<f64>, v: &DVector<f64>) -> [f64; 2] {
+        let f = self.frame(t, q, v, v);
+        [f[0], f[1]]
+    }
+    fn energy(&self, t: f64, q: &DVector<f64>, v: &DVector<f64>) -> (f64, f64) {
+        Fe::energy(self, t, q, v)
+    }
+    fn momentum(&self, t: f64, q: &DVector<f64>, v: &DVector<f64>) -> f64 {
+        Fe::momentum(self, t, q, v)
+    }
+}

@@ -1,0 +1,464 @@
+//! The flexible beam's line in the family table: its `model` key, axes, metrics, columns and
+//! the table of its variants, each a monomorphised run function. `param` is `none` (the beam
+//! is planar); the formulations are `fe_exact` (`fe.rs`), `modal_linear` and
+//! `modal_stiffened` (`modal.rs` with their bases, `formulations.rs`); the integrators the
+//! structural `newmark`, `hht` (alpha = -0.05) and `gen_alpha` (rho_inf = 0.9) on every
+//! formulation, and the rigid core's generic `rk4`, `dopri5`, `dop853`, `implicit_midpoint`
+//! and `gauss6` on the modal forms (`ode.rs`; `fe_exact`'s axial element modes, near 1e4
+//! rad/s at ten elements, make explicit methods pointless and its size is not registered
+//! there).
+use super::case::Numerics;
+use super::problem::{BeamProblem, Setup};
+use crate::case::{Case, CaseError, Scene};
+use crate::integrate::MethodInfo;
+use crate::problem::figures::{Admit, Figures, Measure, Quantity, Selection, Split};
+use crate::problem::{Axes, Axis, Column, Family, Metric, Problem, Stepping, Variant};
+use crate::run::{Observe, RunOutput};
+use crate::structural::gen_alpha::GenAlpha;
+use crate::structural::hht::Hht;
+use crate::structural::method::Method;
+use crate::structural::newmark::Newmark;
+use crate::structural::newton::NewtonOptions;
+
+use super::fe::Fe;
+use super::formulations;
+use super::modal::Modal;
+use super::observe::{BeamObs, Beamlike};
+use super::ode::{AsOde, OdeMethod, run_ode};
+use super::run::run_structural;
+use crate::integrate::adaptive_rk::AdaptiveRk;
+use crate::integrate::explicit_rk::ExplicitRk;
+use crate::integrate::implicit_rk::ImplicitRk;
+use crate::integrate::{Adaptive, FixedStep};
+use crate::run::Watched;
+use crate::structural::gen_alpha_i3::GenAlphaI3;
+
+/// Every variant, one panel per formulation.
+const BY_FORMULATION: Selection = Selection {
+    id: "form",
+    short: "by formulation",
+    describe: "every variant that ran, one panel per formulation.",
+    admit: Admit::All,
+    legend_axes: &[Axis::Integrator],
+    split: Split::Formulation,
+};
+
+const FIGURES: Figures = Figures {
+    key_text: "How to read the plots: one panel per formulation, colour = integrator. Marks \
+        in a red band at the top of a plot are runs that failed (no value; modal_linear \
+        diverges on the spin-ups by design). The energy plots draw the energy balance |E - W| \
+        over the scene's energy_scale (the beam starts at rest). Log axes are labelled at \
+        powers of ten (1e-6 = 10^-6).",
+    work_precision: &[BY_FORMULATION],
+    convergence: &[BY_FORMULATION],
+    timeseries: &[
+        (Quantity::Energy, BY_FORMULATION),
+        (
+            Quantity::Constraint {
+                what: "The AIGC boundary-constraint residual max |C q| (m) at the score times.",
+            },
+            BY_FORMULATION,
+        ),
+    ],
+    across_scenes: &[(BY_FORMULATION, Measure::Primary)],
+    chart_group: None,
+    param_groups: &[],
+    line_styles: "every line solid (one formulation per panel)",
+};
+
+const fn metric(name: &'static str, unit: &'static str, reference_error: bool) -> Metric {
+    Metric {
+        name,
+        unit,
+        reference_error,
+        higher_is_better: false,
+    }
+}
+
+const fn column(name: &'static str, unit: &'static str) -> Column {
+    Column {
+        name,
+        width: 1,
+        unit,
+    }
+}
+
+/// The flexible-beam family.
+pub static FAMILY: Family = Family {
+    model: "flexible_beam",
+    axes: Axes {
+        params: &["none"],
+        integrators: &[
+            "newmark",
+            "hht",
+            "gen_alpha",
+            "rk4",
+            "dopri5",
+            "dop853",
+            "implicit_midpoint",
+            "gauss6",
+            "gen_alpha_i3",
+        ],
+        formulations: FORMULATIONS,
+    },
+    metrics: &[
+        metric("tip_time_error_max", "m", true),
+        metric("tip_deflection_error_max", "m", true),
+        metric("hub_rate_error_max", "rad/s", true),
+        metric("energy_balance_error_max", "1", false),
+        metric("momentum_error_max", "1", false),
+        metric("constraint_error_max", "m", false),
+        metric("tip_deflection_max", "m", false),
+    ],
+    columns: &[
+        column("tip_deflection", "m"),
+        column("tip_axial", "m"),
+        column("hub_angle", "rad"),
+        column("hub_rate", "rad/s"),
+        column("energy", "J"),
+        column("energy_balance", "J"),
+        column("momentum", "N m s"),
+        column("constraint", "m"),
+    ],
+    variants,
+    static_na_reason,
+    load: super::case::load,
+    inputs: super::case::inputs,
+    compile,
+    figures: &FIGURES,
+};
+
+/// The formulations, in report order.
+pub const FORMULATIONS: &[&str] = &[
+    "fe_exact",
+    "modal_stiffened",
+    "modal_linear",
+    "aigc_baumgarte",
+    "aigc_projection",
+    "aigc_index3",
+    "aigc_baumgarte_soft",
+    "aigc_baumgarte_stiff",
+];
+
+/// Whether a formulation carries boundary constraints (its `constraint_error_max` applies).
+pub fn constrained(formulation: &str) -> bool {
+    formulation.starts_with("aigc")
+}
+
+fn static_na_reason(_param: &str, integrator: &str, formulation: &str) -> String {
+    if formulation == "fe_exact" {
+        format!(
+            "{integrator} on fe_exact: its axial element modes (about 1e4 rad/s at ten \
+             elements) leave an explicit or first-order method nothing to measure; the \
+             structural methods run it"
+        )
+    } else {
+        "not registered".into()
+    }
+}
+
+/// A run's score-grid observations.
+pub type Track = Vec<(f64, BeamObs)>;
+
+/// A monomorphised run.
+pub type RunFn = fn(&Setup, Stepping, &Observe) -> Result<RunOutput<BeamObs>, String>;
+
+fn newton() -> NewtonOptions {
+    NewtonOptions::default()
+}
+
+/// A structural method on the model `build` makes.
+fn structural<S: Beamlike, M: Method<S>>(
+    s: &Setup,
+    stepping: Stepping,
+    observe: &Observe,
+    build: &dyn Fn(super::base::Base) -> Result<S, String>,
+    mut method: M,
+) -> Result<RunOutput<BeamObs>, String> {
+    let Stepping::Dt(h) = stepping else {
+        return Err("a structural method needs a fixed step".into());
+    };
+    run_structural(
+        build,
+        s.scene.base,
+        &s.scene.breakpoints,
+        &mut method,
+        h,
+        &s.grid,
+        &s.limits,
+        observe,
+        s.bound(),
+    )
+}
+
+/// `fe_exact` with the case's element count.
+fn fe_model(s: &Setup) -> impl Fn(super::base::Base) -> Result<Fe, String> + '_ {
+    move |base| Fe::new(s.scene.beam, s.numerics.elements, base)
+}
+
+fn fe_newmark(s: &Setup, st: Stepping, o: &Observe) -> Result<RunOutput<BeamObs>, String> {
+    structural(s, st, o, &fe_model(s), Newmark::new(newton())?)
+}
+fn fe_hht(s: &Setup, st: Stepping, o: &Observe) -> Result<RunOutput<BeamObs>, String> {
+    structural(s, st, o, &fe_model(s), Hht::new(-0.05, newton())?)
+}
+fn fe_gen_alpha(s: &Setup, st: Stepping, o: &Observe) -> Result<RunOutput<BeamObs>, String> {
+    structural(s, st, o, &fe_model(s), GenAlpha::new(0.9, newton())?)
+}
+
+fn infos() -> [(&'static str, MethodInfo); 3] {
+    let o = newton();
+    [
+        ("newmark", Newmark::new(o).expect("valid").info()),
+        ("hht", Hht::new(-0.05, o).expect("valid").info()),
+        ("gen_alpha", GenAlpha::new(0.9, o).expect("valid").info()),
+    ]
+}
+
+/// A modal formulation under a structural method.
+fn modal_structural<M: Method<Modal>>(
+    s: &Setup,
+    st: Stepping,
+    o: &Observe,
+    formulation: &str,
+    method: M,
+) -> Result<RunOutput<BeamObs>, String> {
+    let build = |base| Ok(formulations::model(formulation, &s.numerics, s.scene.beam, base)?.0);
+    structural(s, st, o, &build, method)
+}
+
+/// A modal formulation as an ODE of the registered size `D`.
+fn ode_sized<const D: usize>(
+    s: &Setup,
+    st: Stepping,
+    o: &Observe,
+    formulation: &str,
+    which: OdeMethod,
+) -> Result<RunOutput<BeamObs>, String> {
+    let build = |base| formulations::model(formulation, &s.numerics, s.scene.beam, base);
+    run_ode::<Modal, D>(
+        &build,
+        s.scene.base,
+        &s.scene.breakpoints,
+        which,
+        st,
+        &s.grid,
+        &s.limits,
+        o,
+        s.bound(),
+    )
+}
+
+/// A modal formulation as an ODE, dispatched on its size (`formulations::ODE_SIZES`).
+fn ode(
+    s: &Setup,
+    st: Stepping,
+    o: &Observe,
+    formulation: &str,
+    which: OdeMethod,
+) -> Result<RunOutput<BeamObs>, String> {
+    let free = usize::from(matches!(s.scene.base, super::base::Base::Free { .. }));
+    let n = formulations::size(formulation, &s.numerics).ok_or("not a modal formulation")? + free;
+    match n {
+        4 => ode_sized::<10>(s, st, o, formulation, which),
+        5 => ode_sized::<12>(s, st, o, formulation, which),
+        6 => ode_sized::<14>(s, st, o, formulation, which),
+        15 => ode_sized::<32>(s, st, o, formulation, which),
+        16 => ode_sized::<34>(s, st, o, formulation, which),
+        n => Err(format!(
+            "{formulation} has {n} coordinates, whose state size is not registered"
+        )),
+    }
+}
+
+/// The generic integrators' facts (as on any ODE form).
+fn ode_infos() -> [(&'static str, OdeMethod, MethodInfo); 5] {
+    type Sys = AsOde<Modal, 10>;
+    [
+        (
+            "rk4",
+            OdeMethod::Rk4,
+            FixedStep::<Sys>::info(&ExplicitRk::rk4()),
+        ),
+        (
+            "dopri5",
+            OdeMethod::Dopri5,
+            Adaptive::<Watched<Sys>>::info(&AdaptiveRk::dopri5(1e-6)),
+        ),
+        (
+            "dop853",
+            OdeMethod::Dop853,
+            Adaptive::<Watched<Sys>>::info(&AdaptiveRk::dop853(1e-6)),
+        ),
+        (
+            "implicit_midpoint",
+            OdeMethod::ImplicitMidpoint,
+            FixedStep::<Sys>::info(&ImplicitRk::<Sys>::implicit_midpoint()),
+        ),
+        (
+            "gauss6",
+            OdeMethod::Gauss6,
+            FixedStep::<Sys>::info(&ImplicitRk::<Sys>::gauss6()),
+        ),
+    ]
+}
+
+/// One row of the table per `(integrator, formulation)`.
+macro_rules! rows {
+    (ode $v:ident, $info:expr, $form:literal, [$($name:literal => $which:ident),*]) => {
+        $(
+            $v.push((
+                $name,
+                $form,
+                $info.iter().find(|x| x.0 == $name).expect("registered").2,
+                |s, st, o| ode(s, st, o, $form, OdeMethod::$which),
+            ));
+        )*
+    };
+    (structural $v:ident, $info:expr, $form:literal) => {
+        $v.push(("newmark", $form, $info[0].1, |s, st, o| {
+            modal_structural(s, st, o, $form, Newmark::new(newton())?)
+        }));
+        $v.push(("hht", $form, $info[1].1, |s, st, o| {
+            modal_structural(s, st, o, $form, Hht::new(-0.05, newton())?)
+        }));
+        $v.push(("gen_alpha", $form, $info[2].1, |s, st, o| {
+            modal_structural(s, st, o, $form, GenAlpha::new(0.9, newton())?)
+        }));
+    };
+}
+
+/// The family's table: the variant and its run function.
+pub fn table() -> &'static [(Variant, RunFn)] {
+    static TABLE: std::sync::OnceLock<Vec<(Variant, RunFn)>> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        let info = infos();
+        let oi = ode_infos();
+        let mut rows: Vec<(&'static str, &'static str, MethodInfo, RunFn)> = vec![
+            ("newmark", "fe_exact", info[0].1, fe_newmark),
+            ("hht", "fe_exact", info[1].1, fe_hht),
+            ("gen_alpha", "fe_exact", info[2].1, fe_gen_alpha),
+        ];
+        rows!(structural rows, info, "modal_stiffened");
+        rows!(ode rows, oi, "modal_stiffened", ["rk4" => Rk4, "dopri5" => Dopri5,
+            "dop853" => Dop853, "implicit_midpoint" => ImplicitMidpoint, "gauss6" => Gauss6]);
+        rows!(structural rows, info, "modal_linear");
+        rows!(ode rows, oi, "modal_linear", ["rk4" => Rk4, "dopri5" => Dopri5,
+            "dop853" => Dop853, "implicit_midpoint" => ImplicitMidpoint, "gauss6" => Gauss6]);
+        rows!(ode rows, oi, "aigc_baumgarte", ["rk4" => Rk4, "dopri5" => Dopri5,
+            "implicit_midpoint" => ImplicitMidpoint]);
+        // The Baumgarte trade-off study: soft and stiff settings under one explicit and one
+        // implicit method (the implicit one's Newton error is what Baumgarte damps).
+        rows!(ode rows, oi, "aigc_baumgarte_soft", ["rk4" => Rk4,
+            "implicit_midpoint" => ImplicitMidpoint]);
+        rows!(ode rows, oi, "aigc_baumgarte_stiff", ["rk4" => Rk4,
+            "implicit_midpoint" => ImplicitMidpoint]);
+        rows!(ode rows, oi, "aigc_projection", ["rk4" => Rk4, "dopri5" => Dopri5,
+            "dop853" => Dop853]);
+        let i3 = GenAlphaI3::new(0.9, newton()).expect("valid").info();
+        rows.push(("gen_alpha_i3", "aigc_index3", i3, |s, st, o| {
+            let build =
+                |base| Ok(formulations::model("aigc_index3", &s.numerics, s.scene.beam, base)?.0);
+            structural(s, st, o, &build, GenAlphaI3::new(0.9, newton())?)
+        }));
+        rows.into_iter()
+            .enumerate()
+            .map(|(index, (integrator, formulation, info, run))| {
+                (
+                    Variant {
+                        param: "none",
+                        integrator,
+                        formulation,
+                        info,
+                        index,
+                    },
+                    run,
+                )
+            })
+            .collect()
+    })
+}
+
+fn variants() -> &'static [Variant] {
+    static V: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
+    V.get_or_init(|| table().iter().map(|(v, _)| *v).collect())
+}
+
+fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {
+    let _ = case.physics::<Numerics>();
+    Ok(Box::new(BeamProblem::new(case, scene)?))
+}
+
+/// The reference's cross-check by another formulation and integrator, when one is
+/// registered: its method and its score-grid track.
+/// `modal_stiffened` (the case's modes, `dop853` at tolerance 1e-10): another formulation,
+/// another integrator and no mesh.
+pub fn cross_check(s: &Setup) -> Option<(String, Result<Track, String>)> {
+    let v = FAMILY.find("none", "dop853", "modal_stiffened")?;
+    let mut g = s.clone();
+    g.grid.sample_every = g.grid.score_every;
+    let run = BeamProblem::run_with(&g, v, Stepping::Tol(1.0e-10), &Observe::Grid).and_then(
+        |out| match out.failure {
+            Some(f) => Err(format!("{} at t = {}", f.kind.name(), f.t)),
+            None => Ok(out.scored().map(|x| (x.t, x.obs)).collect()),
+        },
+    );
+    Some((
+        format!(
+            "modal_stiffened ({} bending, {} rod modes), dop853 at tolerance 1e-10",
+            s.numerics.bending_modes, s.numerics.axial_modes
+        ),
+        run,
+    ))
+}
+
+/// How a formulation's self-convergence track (`reference.rs`) is computed.
+#[derive(Debug, Clone, Copy)]
+pub enum SelfPlan {
+    /// An adaptive method at two tolerances: the tighter run is the track, their difference
+    /// its error estimate (conservative by about the tolerance ratio).
+    Tolerances(f64, f64),
+    /// A symmetric order-2 method at `h`, `h/2`, `h/4`, extrapolated twice
+    /// (`R(h) = (4 y(h/2) - y(h)) / 3`, error `O(h^4)`): the track is `R(h/2)`, the estimate
+    /// `|R(h/2) - R(h)|` (about 15 times its error).
+    Richardson(f64),
+}
+
+/// The self-convergence plan of a formulation on a scene whose reference step is `h_ref`:
+/// the variant, the plan and a description. `fe_exact`: Newmark extrapolated from `h`, `h/2`,
+/// `h/4` with `h = min(h_ref, 1e-3 s)` (at flexsat's 5e-3 s the rod's modes, `h omega` near 1,
+/// are not yet asymptotic and the estimate is 3.5e-7 m, against 1e-10 at 1e-3 s; Newmark is the trapezoidal rule on the first-order form, whose error
+/// expands in even powers of the step on each smooth segment); the modal forms: `dop853` at
+/// tolerances 1e-13 and 1e-12; every AIGC form: `aigc_projection` under `dop853` likewise
+/// (with consistent initial values the Baumgarte, projected and index-3 forms share the
+/// constrained solution).
+pub fn self_convergence(
+    formulation: &str,
+    h_ref: f64,
+) -> Option<(&'static Variant, SelfPlan, String)> {
+    let (integrator, form, plan) = match formulation {
+        "fe_exact" => ("newmark", "fe_exact", SelfPlan::Richardson(h_ref.min(1.0e-3))),
+        "modal_linear" | "modal_stiffened" => {
+            ("dop853", formulation, SelfPlan::Tolerances(1.0e-13, 1.0e-12))
+        }
+        // Every AIGC form converges to the one solution of the constrained equations.
+        f if constrained(f) => (
+            "dop853",
+            "aigc_projection",
+            SelfPlan::Tolerances(1.0e-13, 1.0e-12),
+        ),
+        _ => return None,
+    };
+    let v = FAMILY.find("none", integrator, form)?;
+    let what = match plan {
+        SelfPlan::Tolerances(a, b) => {
+            format!("{integrator}/{form} at tolerance {a:e}, checked against {b:e}")
+        }
+        SelfPlan::Richardson(h) => format!(
+            "{integrator}/{form} at {h:e}, {:e}, {:e} s, extrapolated twice (Richardson, order 4)",
+            h / 2.0,
+            h / 4.0
+        ),
+    };
+    Some((v, plan, what))
+}

@@ -1,0 +1,393 @@
+//! One compiled flexible-beam scene behind the `Problem` seam: the beam, its base, the
+//! numerics, the grid, the ladders and the stored reference (`reference.rs`).
+//!
+//! Scores (cases/README.md, "flexible_beam"), on the score grid:
+//! `tip_time_error_max` (m, max `|v_tip - v_tip,self|` against the time-converged run of the
+//! same formulation and mesh: the time-discretisation error, which order fits and
+//! work-precision plots measure), `tip_deflection_error_max` (m, max `|v_tip - v_tip,ref|`
+//! against the reference: the formulation's own error), `hub_rate_error_max` (rad/s,
+//! free hub only), `energy_balance_error_max` (max `|E - W| / energy_scale`, `observe.rs`),
+//! `momentum_error_max` (free hub only: max over `t >= t_off` of `|H - tau t_off| / |tau
+//! t_off|`), `constraint_error_max` (formulations with boundary constraints only),
+//! `tip_deflection_max` (max `|v_tip|` over the samples, also of a failed run: the
+//! divergence verdict's evidence). Errors against the reference are absent for a failed run;
+//! a metric that does not apply is null with the reason.
+use std::path::Path;
+
+use super::base::Base;
+use super::case::{BeamScene, Numerics};
+use super::family::{FAMILY, table};
+use super::observe::{BeamObs, balance};
+use super::reference::BeamReference;
+use crate::case::{Case, CaseError, Scene};
+use crate::integrate::{Limits, MethodInfo};
+use crate::metrics::Scores;
+use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
+use crate::reference;
+use crate::run::{Grid, Observe, RunOutput};
+use crate::suite::Ladders;
+use crate::summary::Series;
+
+/// What a run function needs.
+#[derive(Debug, Clone)]
+pub struct Setup {
+    pub scene: BeamScene,
+    pub numerics: Numerics,
+    pub grid: Grid,
+    pub limits: Limits,
+}
+
+impl Setup {
+    /// The divergence bound on `|v_tip|` (m).
+    pub fn bound(&self) -> f64 {
+        self.numerics.divergence_bound * self.scene.beam.l
+    }
+}
+
+/// A flexible-beam scene with its reference (once attached).
+#[derive(Debug, Clone)]
+pub struct BeamProblem {
+    case: String,
+    scene: String,
+    inputs_sha256: String,
+    primary_metric: String,
+    pub(super) setup: Setup,
+    ladders: Ladders,
+    quick: Ladders,
+    pub(super) reference: Option<(BeamReference, String)>,
+}
+
+impl BeamProblem {
+    pub fn new(case: &Case, scene: &Scene) -> Result<Self, CaseError> {
+        let (Some(n), Some(s)) = (case.physics::<Numerics>(), scene.physics::<BeamScene>())
+        else {
+            return Err(CaseError {
+                file: case.file.clone(),
+                key: "model".into(),
+                message: "not a flexible-beam case".into(),
+            });
+        };
+        Ok(BeamProblem {
+            case: case.name.clone(),
+            scene: scene.name.clone(),
+            inputs_sha256: crate::case::inputs_sha256(case, scene),
+            primary_metric: case.primary_metric.clone(),
+            setup: Setup {
+                scene: s.clone(),
+                numerics: *n,
+                grid: Grid {
+                    t_end: scene.t_end,
+                    sample_every: scene.sample_every,
+                    score_every: scene.score_every,
+                },
+                limits: case.limits(),
+            },
+            ladders: crate::plan::ladders(&scene.ladders),
+            quick: crate::plan::ladders(&scene.quick),
+            reference: None,
+        })
+    }
+
+    pub(super) fn case_name(&self) -> &str {
+        &self.case
+    }
+
+    /// One run of a registered variant with this scene's setup (or `setup`).
+    pub(super) fn run_with(
+        setup: &Setup,
+        v: &Variant,
+        stepping: Stepping,
+        observe: &Observe,
+    ) -> Result<RunOutput<BeamObs>, String> {
+        (table()[v.index].1)(setup, stepping, observe)
+    }
+
+    /// The scores and series of a run.
+    fn score(&self, v: &Variant, out: &RunOutput<BeamObs>) -> (Scores, Series) {
+        let mut s = Scores::default();
+        let scene = &self.setup.scene;
+        let tracked: Vec<(f64, BeamObs)> = out.samples.iter().map(|x| (x.t, x.obs)).collect();
+        let scored: Vec<(f64, BeamObs)> = out.scored().map(|x| (x.t, x.obs)).collect();
+        let tip_max = tracked
+            .iter()
+            .map(|(_, o)| o.tip_deflection.abs())
+            .fold(0.0, f64::max);
+        s.set("tip_deflection_max", tip_max);
+        let failed = out
+            .failure
+            .as_ref()
+            .map(|f| format!("run failed ({}) at t = {}", f.kind.name(), f.t));
+        // The balance needs the free hub's angle at t_off: the whole sample track holds it.
+        let bal = balance(&scene.base, &tracked);
+        let stride = out.score_stride.max(1);
+        let bal_scored: Option<Vec<f64>> = bal
+            .as_ref()
+            .map(|b| b.iter().step_by(stride).copied().collect());
+        match (&failed, &bal_scored) {
+            (Some(why), _) => s.null("energy_balance_error_max", why.clone()),
+            (None, None) => s.null(
+                "energy_balance_error_max",
+                "the samples miss the end of the torque",
+            ),
+            (None, Some(b)) => s.set(
+                "energy_balance_error_max",
+                b.iter().fold(0.0_f64, |m, x| m.max(x.abs())) / scene.energy_scale,
+            ),
+        }
+        match (scene.base, &failed) {
+            (Base::SpinUp { .. }, _) => s.null(
+                "momentum_error_max",
+                "prescribed base: the drive changes the angular momentum",
+            ),
+            (Base::Free { .. }, Some(why)) => s.null("momentum_error_max", why.clone()),
+            (Base::Free { torque, t_off, .. }, None) => {
+                let h = torque * t_off;
+                let e = scored
+                    .iter()
+                    .filter(|(t, _)| *t >= t_off - 1e-9 * t_off)
+                    .map(|(_, o)| ((o.momentum - h) / h).abs())
+                    .fold(0.0, f64::max);
+                s.set("momentum_error_max", e);
+            }
+        }
+        if super::family::constrained(v.formulation) {
+            match &failed {
+                Some(why) => s.null("constraint_error_max", why.clone()),
+                None => s.set(
+                    "constraint_error_max",
+                    scored.iter().map(|(_, o)| o.constraint).fold(0.0, f64::max),
+                ),
+            }
+        } else {
+            s.null(
+                "constraint_error_max",
+                format!("{} has no boundary constraints", v.formulation),
+            );
+        }
+        let mut primary_error = None;
+        let time_error = self.time_error(v, &failed, &scored);
+        match &time_error {
+            Ok(e) => s.set(
+                "tip_time_error_max",
+                e.iter().copied().fold(0.0, f64::max),
+            ),
+            Err(why) => s.null("tip_time_error_max", why.clone()),
+        }
+        if self.primary_metric == "tip_time_error_max" {
+            primary_error = time_error.ok();
+        }
+        if let Some((r, _)) = &self.reference {
+            let names = ["tip_deflection_error_max", "hub_rate_error_max"];
+            let free = matches!(scene.base, Base::Free { .. });
+            if !free {
+                s.null(names[1], "prescribed base: the hub rate is given");
+            }
+            if let Some(why) = &failed {
+                s.null(names[0], why.clone());
+                if free {
+                    s.null(names[1], why.clone());
+                }
+            } else if scored.len() != r.t.len() {
+                let why = format!(
+                    "run has {} score points, reference {}",
+                    scored.len(),
+                    r.t.len()
+                );
+                s.null(names[0], why.clone());
+                if free {
+                    s.null(names[1], why);
+                }
+            } else {
+                let tip: Vec<f64> = scored
+                    .iter()
+                    .zip(&r.tip_deflection)
+                    .map(|((_, o), x)| (o.tip_deflection - x).abs())
+                    .collect();
+                let rate: Vec<f64> = scored
+                    .iter()
+                    .zip(&r.hub_rate)
+                    .map(|((_, o), x)| (o.hub_rate - x).abs())
+                    .collect();
+                s.set(names[0], tip.iter().copied().fold(0.0, f64::max));
+                if free {
+                    s.set(names[1], rate.iter().copied().fold(0.0, f64::max));
+                }
+                match self.primary_metric.as_str() {
+                    "tip_deflection_error_max" => primary_error = Some(tip),
+                    "hub_rate_error_max" if free => primary_error = Some(rate),
+                    _ => {}
+                }
+            }
+        }
+        let series = Series {
+            t: scored.iter().map(|x| x.0).collect(),
+            energy: bal_scored.unwrap_or_else(|| vec![f64::NAN; scored.len()]),
+            constraint: out.scored().map(|x| x.residual).collect(),
+            conditioning: out.scored().map(|x| x.conditioning).collect(),
+            primary_error,
+            primary_metric: self.primary_metric.clone(),
+        };
+        (s, series)
+    }
+
+    /// `|v_tip - v_tip,self|` on the score grid against the formulation's self-convergence
+    /// track (`reference.rs`), or why there is none.
+    fn time_error(
+        &self,
+        v: &Variant,
+        failed: &Option<String>,
+        scored: &[(f64, BeamObs)],
+    ) -> Result<Vec<f64>, String> {
+        if let Some(why) = failed {
+            return Err(why.clone());
+        }
+        let (r, _) = self.reference.as_ref().ok_or("no reference attached")?;
+        let track = r
+            .self_convergence
+            .iter()
+            .find(|x| x.formulation == v.formulation)
+            .ok_or_else(|| format!("no self-convergence track of {}", v.formulation))?;
+        let tip = track.tip_deflection.as_ref().ok_or_else(|| {
+            format!(
+                "{} has no converged trajectory ({})",
+                v.formulation,
+                track.failure.as_deref().unwrap_or("its run failed")
+            )
+        })?;
+        if tip.len() != scored.len() {
+            return Err(format!(
+                "run has {} score points, the self-convergence track {}",
+                scored.len(),
+                tip.len()
+            ));
+        }
+        Ok(scored
+            .iter()
+            .zip(tip)
+            .map(|((_, o), x)| (o.tip_deflection - x).abs())
+            .collect())
+    }
+
+    /// The trajectory columns of a run.
+    fn columns(&self, out: &RunOutput<BeamObs>) -> Columns {
+        let samples: Vec<(f64, BeamObs)> = out.samples.iter().map(|x| (x.t, x.obs)).collect();
+        let col = |f: fn(&BeamObs) -> f64| samples.iter().map(|(_, o)| f(o)).collect();
+        let bal = balance(&self.setup.scene.base, &samples)
+            .unwrap_or_else(|| vec![f64::NAN; samples.len()]);
+        Columns {
+            t: samples.iter().map(|x| x.0).collect(),
+            columns: vec![
+                ("tip_deflection", 1, col(|o| o.tip_deflection)),
+                ("tip_axial", 1, col(|o| o.tip_axial)),
+                ("hub_angle", 1, col(|o| o.hub_angle)),
+                ("hub_rate", 1, col(|o| o.hub_rate)),
+                ("energy", 1, col(|o| o.kinetic + o.strain)),
+                ("energy_balance", 1, bal),
+                ("momentum", 1, col(|o| o.momentum)),
+                ("constraint", 1, col(|o| o.constraint)),
+            ],
+        }
+    }
+}
+
+impl Problem for BeamProblem {
+    fn family(&self) -> &'static Family {
+        &FAMILY
+    }
+    fn case(&self) -> &str {
+        &self.case
+    }
+    fn scene(&self) -> &str {
+        &self.scene
+    }
+    fn inputs_sha256(&self) -> &str {
+        &self.inputs_sha256
+    }
+    fn primary_metric(&self) -> &str {
+        &self.primary_metric
+    }
+    fn t_end(&self) -> f64 {
+        self.setup.grid.t_end
+    }
+    fn set_t_end(&mut self, t_end: f64) {
+        self.setup.grid.t_end = t_end;
+        self.reference = None;
+    }
+    fn score_every(&self) -> f64 {
+        self.setup.grid.score_every
+    }
+    fn sample_every(&self) -> f64 {
+        self.setup.grid.sample_every
+    }
+    fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64] {
+        if quick { &self.quick } else { &self.ladders }.for_method(info)
+    }
+    fn na_reason(&self, _v: &Variant) -> Option<String> {
+        None
+    }
+    fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
+        let (r, sha): (BeamReference, String) =
+            reference::load_as(root, &self.case, &self.scene, &self.inputs_sha256)
+                .map_err(|e| e.to_string())?;
+        let g = &self.setup.grid;
+        reference::check_grid(&r.t, g.t_end, g.score_every).map_err(|m| {
+            reference::grid_error(root, &self.case, &self.scene, m).to_string()
+        })?;
+        self.reference = Some((r, sha));
+        Ok(())
+    }
+    fn reference_sha256(&self) -> Option<&str> {
+        self.reference.as_ref().map(|(_, sha)| sha.as_str())
+    }
+    fn accuracy_claim(&self, metric: &str) -> Option<f64> {
+        let (r, _) = self.reference.as_ref()?;
+        match metric {
+            "tip_deflection_error_max" => Some(r.accuracy_claim.tip_deflection),
+            "hub_rate_error_max" => Some(r.accuracy_claim.hub_rate),
+            "tip_time_error_max" => Some(
+                r.self_convergence
+                    .iter()
+                    .filter_map(|x| x.time_estimate)
+                    .fold(0.0, f64::max),
+            ),
+            _ => None,
+        }
+    }
+    fn accuracy_claim_for(&self, metric: &str, formulation: &str) -> Option<f64> {
+        if metric != "tip_time_error_max" {
+            return self.accuracy_claim(metric);
+        }
+        let (r, _) = self.reference.as_ref()?;
+        r.self_convergence
+            .iter()
+            .find(|x| x.formulation == formulation)
+            .and_then(|x| x.time_estimate)
+    }
+    fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String> {
+        let observe = match want {
+            Want::Timing => Observe::Final,
+            Want::Scored | Want::Trajectory => Observe::Grid,
+        };
+        let out = Self::run_with(&self.setup, v, stepping, &observe)?;
+        let mut o = Outcome {
+            stats: out.stats,
+            failure: out.failure.clone(),
+            ..Outcome::default()
+        };
+        if want != Want::Timing {
+            let (scores, series) = self.score(v, &out);
+            o.scores = scores;
+            o.series = Some(series);
+        }
+        if want == Want::Trajectory {
+            o.columns = Some(self.columns(&out));
+        }
+        Ok(o)
+    }
+    fn make_reference(&self, root: &Path) -> Result<String, String> {
+        super::reference::make(self, root)
+    }
+    fn check_reference(&self, root: &Path) -> Result<(bool, String), String> {
+        super::reference::check(self, root)
+    }
+}
