@@ -40,11 +40,12 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::case::gate::Check;
-use crate::case::{self, Bound, Case, Gate};
-use crate::integrate::FailureKind;
+use crate::case::{self, Case, Gate};
 use crate::problem::{Problem, Variant};
 use crate::summary::{Record, Status, Summary};
+use judge::{check_label, judge_bound, judge_expect, outcome_text, threshold_text};
 
+mod judge;
 pub mod load;
 pub mod regression;
 pub mod table;
@@ -247,35 +248,6 @@ pub const EXPECT_PREFIX: &str = "expect failed";
 /// Whether a row comes from an expected-failure gate (`Check::Expect`).
 pub fn is_expect_row(r: &GateRow) -> bool {
     r.metric.starts_with(EXPECT_PREFIX)
-}
-
-/// The `metric` column of a gate row: the metric, or `expect failed (diverged)`.
-fn check_label(c: &Check) -> String {
-    match c {
-        Check::Bound { metric, .. } => metric.clone(),
-        Check::Expect { kind, .. } => format!("{EXPECT_PREFIX} ({})", kind.name()),
-    }
-}
-
-/// `<= t`, `>= t` or `before t s`.
-fn threshold_text(c: &Check) -> String {
-    match c {
-        Check::Bound {
-            bound: Bound::Max(t),
-            ..
-        } => format!("<= {t:e}"),
-        Check::Bound {
-            bound: Bound::Min(t),
-            ..
-        } => format!(">= {t:e}"),
-        Check::Expect { before, .. } => format!("before {} s", time_text(*before)),
-    }
-}
-
-/// A time as written (`20`, `12.5`), in exponent form when that is long.
-fn time_text(t: f64) -> String {
-    let s = format!("{t}");
-    if s.len() <= 10 { s } else { format!("{t:.4e}") }
 }
 
 /// A failure's one-line description.
@@ -762,84 +734,6 @@ fn unusable(c: &Case, p: &Point, r: &Record, refs: &mut ReferenceHashes) -> Opti
     }
     (r.status == Status::NotApplicable)
         .then(|| format!("n/a: {}", r.reason.as_deref().unwrap_or("no reason given")))
-}
-
-/// A bound gate's verdict on a current, applicable record: the run ended `ok` and its
-/// metric lies within the bound.
-fn judge_bound(row: &mut GateRow, r: &Record, metric: &str, bound: Bound) {
-    if r.status == Status::Failed {
-        row.note = failure_text(r);
-        return;
-    }
-    let x = match metric_value(r, metric) {
-        None => {
-            row.note = "metric absent from the record (it does not apply to this case)".into();
-            return;
-        }
-        Some(None) => {
-            row.note = format!(
-                "null: {}",
-                r.metric_reasons
-                    .get(metric)
-                    .map_or("no reason given", String::as_str)
-            );
-            return;
-        }
-        Some(Some(x)) => x,
-    };
-    let pass = match bound {
-        Bound::Max(t) => x <= t,
-        Bound::Min(t) => x >= t,
-    };
-    if pass {
-        row.verdict = Verdict::Pass;
-    } else {
-        row.note = match bound {
-            Bound::Max(t) if t > 0.0 => format!("{:.3}x the maximum", x / t),
-            Bound::Max(_) => "above the maximum".into(),
-            Bound::Min(_) => "below the minimum".into(),
-        };
-    }
-}
-
-/// An expected-failure gate's verdict on a current, applicable record: a pass only for a
-/// typed failure of `kind` at `t <= before`.
-fn judge_expect(row: &mut GateRow, r: &Record, kind: FailureKind, before: f64) {
-    let expected = format!("expected {} before {} s", kind.name(), time_text(before));
-    match (&r.status, &r.failure) {
-        (Status::Failed, Some(f)) if f.kind == kind && f.t <= before => {
-            row.verdict = Verdict::Pass;
-        }
-        (Status::Failed, Some(f)) if f.kind == kind => {
-            row.note = format!(
-                "{} at t = {}, too late: {expected}",
-                kind.name(),
-                time_text(f.t)
-            );
-        }
-        (Status::Failed, Some(f)) => {
-            row.note = format!(
-                "failed with {} at t = {}: {}; {expected}",
-                f.kind.name(),
-                time_text(f.t),
-                f.message
-            );
-        }
-        (Status::Failed, None) => {
-            row.note = format!("failed without a typed failure; {expected}");
-        }
-        _ => row.note = format!("ran to t_end without failing; {expected}"),
-    }
-}
-
-/// An expected-failure gate's value: the failure's kind and time, or the status.
-fn outcome_text(r: &Record) -> String {
-    match (&r.status, &r.failure) {
-        (_, Some(f)) => format!("{} at t = {}", f.kind.name(), time_text(f.t)),
-        (Status::Ok, None) => "ok".into(),
-        (Status::Failed, None) => "failed".into(),
-        (Status::NotApplicable, None) => "n/a".into(),
-    }
 }
 
 #[cfg(test)]
