@@ -52,7 +52,7 @@ fn bad_input_names_the_key() {
         ),
         (
             "breakpoints = [15.0]\nenergy_scale = 3200.0",
-            "breakpoints = [12.0, 15.05]\nenergy_scale = 3200.0",
+            "breakpoints = [15.0, 15.05]\nenergy_scale = 3200.0",
             "scene[0].breakpoints[1]",
         ),
     ];
@@ -103,7 +103,11 @@ fn conventional_model_diverges_and_stiffened_one_does_not() {
     let fail = lin.failure.expect("modal_linear diverges");
     assert_eq!(fail.kind, crate::integrate::FailureKind::Diverged);
     assert!(fail.t > 10.0 && fail.t < 20.0, "{}", fail.t);
-    assert!(lin.scores.get("tip_deflection_max").unwrap() > 10.0);
+    // The samples before the failing step already lie far beyond the bounded models' 0.4 m
+    // (the crossing itself is in the failure's message, not a sample).
+    let tip = lin.scores.get("tip_deflection_max").unwrap();
+    assert!(tip > 5.0 && tip <= 10.0, "{tip}");
+    assert!(fail.message.contains("divergence bound"), "{}", fail.message);
     let st = p
         .run(
             f.find("none", "rk4", "modal_stiffened").unwrap(),
