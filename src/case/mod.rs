@@ -27,7 +27,11 @@
 //! let s = c.scene("two_angles").unwrap();
 //! assert!(s.t_end > 0.0 && s.n_score >= 1);
 //! // Bad input is an error naming the file and the key.
-//! let text = mbdbench::case::embedded_sources()[3].1.replace("t_end = 10.0", "t_end = -1.0");
+//! let source = mbdbench::case::embedded_sources()
+//!     .iter()
+//!     .find(|(label, _)| label.ends_with("nine_spring.toml"))
+//!     .unwrap();
+//! let text = source.1.replace("t_end = 10.0", "t_end = -1.0");
 //! let e = mbdbench::case::load_str("cases/nine_spring.toml", &text).unwrap_err();
 //! assert!(e.key.ends_with(".t_end"), "{e}");
 //! ```
