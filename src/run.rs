@@ -169,7 +169,7 @@ pub use crate::case::steps_dividing as divides;
 
 /// Output grid for a run: `(output interval, number of outputs, outputs per score point)`.
 /// Uses the sample grid when `h` (if fixed) divides `sample_every`, else the score grid.
-pub(crate) fn output_grid(grid: &Grid, h: Option<f64>) -> Result<(f64, u64, usize), String> {
+fn output_grid(grid: &Grid, h: Option<f64>) -> Result<(f64, u64, usize), String> {
     let n_score = divides(grid.t_end, grid.score_every).ok_or_else(|| {
         format!(
             "score_every = {} does not divide t_end = {}",
@@ -219,6 +219,39 @@ pub(crate) fn over_budget(what: &str, n: u64, limits: &Limits) -> Option<Failure
                 limits.max_steps
             ),
         )
+    })
+}
+
+/// A fixed-step run's plan over the output grid (`output_grid`): `n_total` steps of `h =
+/// t_end / n_total`, an output every `per_out` steps (`n_out` outputs), a score point every
+/// `stride` outputs.
+pub(crate) struct FixedPlan {
+    pub n_total: u64,
+    pub h: f64,
+    pub n_out: u64,
+    pub per_out: u64,
+    pub stride: usize,
+}
+
+/// The plan of a run at the nominal step `h_nominal`; an error when the step does not divide
+/// the horizon or the output interval.
+pub(crate) fn fixed_plan(grid: &Grid, h_nominal: f64) -> Result<FixedPlan, String> {
+    let n_total = divides(grid.t_end, h_nominal)
+        .ok_or_else(|| format!("step {h_nominal} does not divide t_end = {}", grid.t_end))?;
+    let (dt_out, n_out, stride) = output_grid(grid, Some(h_nominal))?;
+    let per_out = divides(dt_out, h_nominal)
+        .ok_or_else(|| format!("step {h_nominal} does not divide the output interval {dt_out}"))?;
+    if per_out * n_out != n_total {
+        return Err(format!(
+            "inconsistent grid: {per_out} x {n_out} != {n_total} steps"
+        ));
+    }
+    Ok(FixedPlan {
+        n_total,
+        h: grid.t_end / n_total as f64,
+        n_out,
+        per_out,
+        stride,
     })
 }
 
@@ -309,15 +342,13 @@ pub fn run_fixed<S: Observable, M: FixedStep<S>>(
         );
     }
     let observe = *observe == Observe::Grid;
-    let (dt_out, n_out, stride) = output_grid(grid, Some(h_nominal))?;
-    let per_out = divides(dt_out, h_nominal)
-        .ok_or_else(|| format!("step {h_nominal} does not divide the output interval {dt_out}"))?;
-    if per_out * n_out != n_total {
-        return Err(format!(
-            "inconsistent grid: {per_out} x {n_out} != {n_total} steps"
-        ));
-    }
-    let h = grid.t_end / n_total as f64;
+    let FixedPlan {
+        h,
+        n_out,
+        per_out,
+        stride,
+        ..
+    } = fixed_plan(grid, h_nominal)?;
     let mut out = RunOutput {
         samples: Vec::with_capacity(reserve(n_out)),
         score_stride: stride,

@@ -199,6 +199,17 @@ pub struct Stats {
     pub normalizations: u64,
 }
 
+/// The counters of two runs together (a run made of segments, each its own run).
+impl std::ops::AddAssign for Stats {
+    fn add_assign(&mut self, b: Stats) {
+        self.steps += b.steps;
+        self.rhs_evals += b.rhs_evals;
+        self.newton_iters += b.newton_iters;
+        self.rejected += b.rejected;
+        self.normalizations += b.normalizations;
+    }
+}
+
 /// Per-run budgets; exceeding one is a `work_limit` failure. An adaptive run's work is not
 /// known up front (a fixed-step run's is, and is checked against `max_steps` before it
 /// starts): `run::run_adaptive` bounds it by `max_adaptive_rhs_evals` too ([`Limits::adaptive`]),

@@ -62,9 +62,11 @@ pub trait Method<S: ?Sized> {
     fn new_state(&self, sys: &S) -> State;
 }
 
-macro_rules! unconstrained {
-    ($t:ty) => {
-        impl<S: SecondOrder + ?Sized> Method<S> for $t {
+/// `Method<S>` for a method whose own `init`, `step` and `info` take every `S` with the
+/// bound `$bound`, and whose state has the multipliers `$state` makes room for.
+macro_rules! method {
+    ($t:ty, $bound:path, $state:ident) => {
+        impl<S: $bound + ?Sized> Method<S> for $t {
             fn init(
                 &mut self,
                 sys: &S,
@@ -88,39 +90,12 @@ macro_rules! unconstrained {
                 <$t>::info(self)
             }
             fn new_state(&self, sys: &S) -> State {
-                State::for_system(sys)
+                State::$state(sys)
             }
         }
     };
 }
-unconstrained!(Newmark);
-unconstrained!(Hht);
-unconstrained!(GenAlpha);
-
-impl<S: Constraints + ?Sized> Method<S> for GenAlphaI3 {
-    fn init(
-        &mut self,
-        sys: &S,
-        t0: f64,
-        state: &mut State,
-        stats: &mut Stats,
-    ) -> Result<(), Failure> {
-        GenAlphaI3::init(self, sys, t0, state, stats)
-    }
-    fn step(
-        &mut self,
-        sys: &S,
-        t: f64,
-        h: f64,
-        state: &mut State,
-        stats: &mut Stats,
-    ) -> Result<(), Failure> {
-        GenAlphaI3::step(self, sys, t, h, state, stats)
-    }
-    fn info(&self) -> MethodInfo {
-        GenAlphaI3::info(self)
-    }
-    fn new_state(&self, sys: &S) -> State {
-        State::for_constrained(sys)
-    }
-}
+method!(Newmark, SecondOrder, for_system);
+method!(Hht, SecondOrder, for_system);
+method!(GenAlpha, SecondOrder, for_system);
+method!(GenAlphaI3, Constraints, for_constrained);

@@ -4,13 +4,10 @@
 //! massless-node chain and its reduced system, and the Cartesian pendulum.
 use nalgebra::{DMatrix, DVector, Matrix4};
 
-use super::gen_alpha::GenAlpha;
-use super::hht::Hht;
-use super::newmark::Newmark;
 use super::newton::NewtonOptions;
 use super::state::State;
 use super::{Constraints, SecondOrder};
-use crate::integrate::{Failure, FailureKind, Stats};
+use crate::integrate::{FailureKind, Stats};
 
 /// Newton options well below every discretisation error the tests measure.
 pub(crate) fn tight() -> NewtonOptions {
@@ -28,53 +25,11 @@ pub(crate) fn cap_one() -> NewtonOptions {
     }
 }
 
-/// The unconstrained integrators behind one interface, for the shared checks.
-pub(crate) trait Method {
-    fn init(
-        &mut self,
-        sys: &dyn SecondOrder,
-        t0: f64,
-        st: &mut State,
-        stats: &mut Stats,
-    ) -> Result<(), Failure>;
-    fn step(
-        &mut self,
-        sys: &dyn SecondOrder,
-        t: f64,
-        h: f64,
-        st: &mut State,
-        stats: &mut Stats,
-    ) -> Result<(), Failure>;
-}
+/// The unconstrained integrators behind one interface, for the shared checks: the public
+/// `method::Method` on trait objects.
+pub(crate) trait Method: super::method::Method<dyn SecondOrder> {}
 
-macro_rules! method {
-    ($t:ty) => {
-        impl Method for $t {
-            fn init(
-                &mut self,
-                sys: &dyn SecondOrder,
-                t0: f64,
-                st: &mut State,
-                stats: &mut Stats,
-            ) -> Result<(), Failure> {
-                <$t>::init(self, sys, t0, st, stats)
-            }
-            fn step(
-                &mut self,
-                sys: &dyn SecondOrder,
-                t: f64,
-                h: f64,
-                st: &mut State,
-                stats: &mut Stats,
-            ) -> Result<(), Failure> {
-                <$t>::step(self, sys, t, h, st, stats)
-            }
-        }
-    };
-}
-method!(Newmark);
-method!(Hht);
-method!(GenAlpha);
+impl<T: super::method::Method<dyn SecondOrder>> Method for T {}
 
 /// `M a + C v + K q = 0` with constant matrices.
 pub(crate) struct Linear {

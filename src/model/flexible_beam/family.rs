@@ -7,7 +7,6 @@
 //! and `gauss6` on the modal forms (`ode.rs`; `fe_exact`'s axial element modes, near 1e4
 //! rad/s at ten elements, make explicit methods pointless and its size is not registered
 //! there).
-use super::case::Numerics;
 use super::problem::{BeamProblem, Setup};
 use crate::case::{Case, CaseError, Scene};
 use crate::integrate::MethodInfo;
@@ -385,7 +384,6 @@ fn variants() -> &'static [Variant] {
 }
 
 fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {
-    let _ = case.physics::<Numerics>();
     Ok(Box::new(BeamProblem::new(case, scene)?))
 }
 
@@ -393,23 +391,29 @@ fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {
 /// registered: its method and its score-grid track.
 /// `modal_stiffened` (the case's modes, `dop853` at tolerance 1e-10): another formulation,
 /// another integrator and no mesh.
-pub fn cross_check(s: &Setup) -> Option<(String, Result<Track, String>)> {
-    let v = FAMILY.find("none", "dop853", "modal_stiffened")?;
-    let mut g = s.clone();
-    g.grid.sample_every = g.grid.score_every;
-    let run = BeamProblem::run_with(&g, v, Stepping::Tol(1.0e-10), &Observe::Grid).and_then(
-        |out| match out.failure {
-            Some(f) => Err(format!("{} at t = {}", f.kind.name(), f.t)),
-            None => Ok(out.scored().map(|x| (x.t, x.obs)).collect()),
-        },
-    );
-    Some((
+pub fn cross_check(s: &Setup) -> Result<(String, Result<Track, String>), String> {
+    let v = FAMILY
+        .find("none", "dop853", "modal_stiffened")
+        .ok_or("dop853/modal_stiffened is not registered")?;
+    Ok((
         format!(
             "modal_stiffened ({} bending, {} rod modes), dop853 at tolerance 1e-10",
             s.numerics.bending_modes, s.numerics.axial_modes
         ),
-        run,
+        track(s, v, Stepping::Tol(1.0e-10))?,
     ))
+}
+
+/// A run of `v` on the score grid: Err when it cannot start, Ok(Err) with the failure's
+/// kind, time and message when it failed.
+pub fn track(s: &Setup, v: &Variant, st: Stepping) -> Result<Result<Track, String>, String> {
+    let mut g = s.clone();
+    g.grid.sample_every = g.grid.score_every;
+    let out = BeamProblem::run_with(&g, v, st, &Observe::Grid)?;
+    Ok(match out.failure {
+        Some(f) => Err(format!("{} at t = {}: {}", f.kind.name(), f.t, f.message)),
+        None => Ok(out.scored().map(|x| (x.t, x.obs)).collect()),
+    })
 }
 
 /// How a formulation's self-convergence track (`reference.rs`) is computed.

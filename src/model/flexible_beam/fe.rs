@@ -349,9 +349,6 @@ impl SecondOrder for Fe {
 }
 
 impl super::observe::Beamlike for Fe {
-    fn beam(&self) -> Beam {
-        self.beam
-    }
     fn base(&self) -> Base {
         self.base
     }

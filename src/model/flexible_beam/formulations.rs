@@ -61,35 +61,38 @@ pub fn basis(formulation: &str, n: &Numerics) -> Option<Basis> {
             stiffening: true,
             constraints: vec![],
         }),
-        f if f.starts_with("aigc") => {
-            let mut stretch: Vec<Shape> = (1..=n.cb_axial_modes)
-                .map(Shape::ClampedClampedRod)
-                .collect();
-            stretch.extend([Shape::Linear(0), Shape::Linear(1)]);
-            let mut lateral: Vec<Shape> = (1..=n.cb_bending_modes)
-                .map(Shape::ClampedClampedBending)
-                .collect();
-            lateral.extend((0..4).map(Shape::Hermite));
-            let bc = |field, at_tip, derivative| Bc {
-                field,
-                at_tip,
-                derivative,
-            };
-            Some(Basis {
-                stretch,
-                lateral,
-                stiffening: true,
-                constraints: vec![
-                    bc(Field::Stretch, false, 0),
-                    bc(Field::Lateral, false, 0),
-                    bc(Field::Lateral, false, 1),
-                    bc(Field::Stretch, true, 1),
-                    bc(Field::Lateral, true, 2),
-                    bc(Field::Lateral, true, 3),
-                ],
-            })
-        }
+        f if f.starts_with("aigc") => Some(aigc_basis(n.cb_axial_modes, n.cb_bending_modes)),
         _ => None,
+    }
+}
+
+/// The AIGC basis: `axial` clamped-clamped rod modes and the two linear static modes for the
+/// stretch, `bending` clamped-clamped beam modes and the four Hermite static modes for `u2`,
+/// with foreshortening, and the cantilever's six boundary conditions as constraints.
+pub fn aigc_basis(axial: usize, bending: usize) -> Basis {
+    let bc = |field, at_tip, derivative| Bc {
+        field,
+        at_tip,
+        derivative,
+    };
+    Basis {
+        stretch: (1..=axial)
+            .map(Shape::ClampedClampedRod)
+            .chain([Shape::Linear(0), Shape::Linear(1)])
+            .collect(),
+        lateral: (1..=bending)
+            .map(Shape::ClampedClampedBending)
+            .chain((0..4).map(Shape::Hermite))
+            .collect(),
+        stiffening: true,
+        constraints: vec![
+            bc(Field::Stretch, false, 0),
+            bc(Field::Lateral, false, 0),
+            bc(Field::Lateral, false, 1),
+            bc(Field::Stretch, true, 1),
+            bc(Field::Lateral, true, 2),
+            bc(Field::Lateral, true, 3),
+        ],
     }
 }
 
@@ -143,9 +146,6 @@ pub fn model(
 }
 
 impl super::observe::Beamlike for Modal {
-    fn beam(&self) -> super::fe::Beam {
-        self.beam
-    }
     fn base(&self) -> Base {
         self.base
     }

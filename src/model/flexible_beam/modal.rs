@@ -101,8 +101,6 @@ pub struct Modal {
     kqq: DMatrix<f64>,
     /// `D = Mqq - Kg` (`Mqq` without stiffening).
     d: DMatrix<f64>,
-    /// `int phi' phi'^T` (the tip's foreshortening is `1/2 q^T Sqq q`).
-    sqq: DMatrix<f64>,
     /// `C` (`np x nq`).
     c: DMatrix<f64>,
     ap: DVector<f64>,
@@ -113,23 +111,50 @@ pub struct Modal {
     phi_tip: DVector<f64>,
     /// The constraint rows (`m x n`).
     rows: DMatrix<f64>,
+    /// The transposes of `sqq`, `mpp`, `kpp`, `c`, `mqq`, `kqq`, `d`: the residual and the
+    /// quadratic forms read their rows
+    /// as contiguous columns (the matrices are symmetric only to round-off, and the residual
+    /// keeps the row-wise sums).
+    rows_of: RowsOf,
+}
+
+/// Row-major copies (transposes) of the matrices the residual sums over rows.
+#[derive(Debug, Clone)]
+struct RowsOf {
+    /// `int phi' phi'^T` (the tip's foreshortening is `1/2 q^T Sqq q`; symmetric).
+    sqq: DMatrix<f64>,
+    mpp: DMatrix<f64>,
+    kpp: DMatrix<f64>,
+    c: DMatrix<f64>,
+    mqq: DMatrix<f64>,
+    kqq: DMatrix<f64>,
+    d: DMatrix<f64>,
 }
 
 /// Subintervals and points per subinterval of the composite Gauss-Legendre rule.
 const N_SUB: usize = 32;
 const N_PT: usize = 8;
 
-/// `x[xo..]^T m y[yo..]` over `m`'s rows and columns.
-fn bilinear(m: &DMatrix<f64>, x: &DVector<f64>, xo: usize, y: &DVector<f64>, yo: usize) -> f64 {
+/// `x[xo..]^T m y[yo..]` over `m`'s rows and columns, from `mt` = `m^T` (row `i` of `m` is
+/// the contiguous column `i` of `mt`): the row sums first, in the index order.
+fn bilinear(mt: &DMatrix<f64>, x: &DVector<f64>, xo: usize, y: &DVector<f64>, yo: usize) -> f64 {
+    let (nr, nc) = (mt.ncols(), mt.nrows());
+    let (x, y) = (&x.as_slice()[xo..xo + nr], &y.as_slice()[yo..yo + nc]);
     let mut s = 0.0;
-    for i in 0..m.nrows() {
+    for (i, xi) in x.iter().enumerate() {
         let mut row = 0.0;
-        for j in 0..m.ncols() {
-            row += m[(i, j)] * y[yo + j];
+        for (m, yj) in col(mt, i).iter().zip(y) {
+            row += m * yj;
         }
-        s += x[xo + i] * row;
+        s += xi * row;
     }
     s
+}
+
+/// Column `j` of `m` as a slice (nalgebra stores columns contiguously).
+fn col(m: &DMatrix<f64>, j: usize) -> &[f64] {
+    let n = m.nrows();
+    &m.as_slice()[j * n..(j + 1) * n]
 }
 
 /// `a^T x[xo..]`.
@@ -274,7 +299,17 @@ impl Modal {
                 rows[(r, start + j)] = s.eval(x, l)[bc.derivative];
             }
         }
+        let rows_of = RowsOf {
+            sqq: sqq.transpose(),
+            mpp: mpp.transpose(),
+            kpp: kpp.transpose(),
+            c: c.transpose(),
+            mqq: mqq.transpose(),
+            kqq: kqq.transpose(),
+            d: d.transpose(),
+        };
         Ok(Modal {
+            rows_of,
             beam,
             base,
             basis,
@@ -286,7 +321,6 @@ impl Modal {
             mqq,
             kqq,
             d,
-            sqq,
             c,
             ap,
             aq,
@@ -331,7 +365,7 @@ impl Modal {
         let s = dot_at(&self.psi_tip, q, self.off);
         if self.basis.stiffening {
             let iq = self.off + self.np;
-            s - 0.5 * bilinear(&self.sqq, q, iq, q, iq)
+            s - 0.5 * bilinear(&self.rows_of.sqq, q, iq, q, iq)
         } else {
             s
         }
@@ -350,8 +384,8 @@ impl Modal {
         let (o, iq) = (self.off, self.off + self.np);
         self.j_hub()
             + self.i0
-            + bilinear(&self.d, q, iq, q, iq)
-            + bilinear(&self.mpp, q, o, q, o)
+            + bilinear(&self.rows_of.d, q, iq, q, iq)
+            + bilinear(&self.rows_of.mpp, q, o, q, o)
             + 2.0 * dot_at(&self.ap, q, o)
     }
 
@@ -376,7 +410,7 @@ impl Modal {
     /// The part of `H` from the deformation rates: `-p'^T C q + q'^T (C^T p + aq)`.
     fn h_relative(&self, q: &DVector<f64>, v: &DVector<f64>) -> f64 {
         let (o, iq) = (self.off, self.off + self.np);
-        -bilinear(&self.c, v, o, q, iq) + bilinear(&self.c, q, o, v, iq) + dot_at(&self.aq, v, iq)
+        -bilinear(&self.rows_of.c, v, o, q, iq) + bilinear(&self.rows_of.c, q, o, v, iq) + dot_at(&self.aq, v, iq)
     }
 
     /// Kinetic energy `T2` (the rigid rotation and a free hub included) and strain energy `V`
@@ -384,12 +418,12 @@ impl Modal {
     pub fn energy(&self, t: f64, q: &DVector<f64>, v: &DVector<f64>) -> (f64, f64) {
         let (o, iq) = (self.off, self.off + self.np);
         let om = self.hub(t, q, v)[1];
-        let kin = 0.5 * bilinear(&self.mpp, v, o, v, o)
-            + 0.5 * bilinear(&self.mqq, v, iq, v, iq)
+        let kin = 0.5 * bilinear(&self.rows_of.mpp, v, o, v, o)
+            + 0.5 * bilinear(&self.rows_of.mqq, v, iq, v, iq)
             + om * self.h_relative(q, v)
             + 0.5 * om * om * self.j_total(q);
         let strain =
-            0.5 * bilinear(&self.kpp, q, o, q, o) + 0.5 * bilinear(&self.kqq, q, iq, q, iq);
+            0.5 * bilinear(&self.rows_of.kpp, q, o, q, o) + 0.5 * bilinear(&self.rows_of.kqq, q, iq, q, iq);
         (kin, strain)
     }
 
@@ -428,50 +462,57 @@ impl SecondOrder for Modal {
         let iq = o + np;
         let free = o == 1;
         let om2 = om * om;
+        let t_of = &self.rows_of;
+        let (q, v, a) = (q.as_slice(), v.as_slice(), a.as_slice());
+        let (qp, vp, ap_) = (&q[o..iq], &v[o..iq], &a[o..iq]);
+        let (qq, vq, aq_) = (&q[iq..iq + nq], &v[iq..iq + nq], &a[iq..iq + nq]);
+        let r = r.as_mut_slice();
         // The hub row's sums: Jtot, q^T D q' + p^T Mpp p' + ap^T p', the coupling to p'', q''.
+        // Each row sum runs over a contiguous column of the transpose, in the index order.
         let (mut jtot, mut dot, mut coupling) = (self.j_hub() + self.i0, 0.0, 0.0);
         for i in 0..np {
+            let (mrow, krow, crow) = (col(&t_of.mpp, i), col(&t_of.kpp, i), col(&t_of.c, i));
             let (mut ma, mut mq, mut mv, mut kq) = (0.0, 0.0, 0.0, 0.0);
             for j in 0..np {
-                let m = self.mpp[(i, j)];
-                ma += m * a[o + j];
-                mq += m * q[o + j];
-                mv += m * v[o + j];
-                kq += self.kpp[(i, j)] * q[o + j];
+                let m = mrow[j];
+                ma += m * ap_[j];
+                mq += m * qp[j];
+                mv += m * vp[j];
+                kq += krow[j] * qp[j];
             }
             let (mut cq, mut cv) = (0.0, 0.0);
             for k in 0..nq {
-                let c = self.c[(i, k)];
-                cq += c * q[iq + k];
-                cv += c * v[iq + k];
+                cq += crow[k] * qq[k];
+                cv += crow[k] * vq[k];
             }
             r[o + i] = ma - 2.0 * om * cv - omd * cq + kq - om2 * (mq + self.ap[i]);
             if free {
-                jtot += q[o + i] * (mq + 2.0 * self.ap[i]);
-                dot += q[o + i] * mv + self.ap[i] * v[o + i];
-                coupling -= cq * a[o + i];
+                jtot += qp[i] * (mq + 2.0 * self.ap[i]);
+                dot += qp[i] * mv + self.ap[i] * vp[i];
+                coupling -= cq * ap_[i];
             }
         }
         for k in 0..nq {
+            let (mrow, drow, krow) = (col(&t_of.mqq, k), col(&t_of.d, k), col(&t_of.kqq, k));
+            let ccol = col(&self.c, k);
             let (mut ma, mut dq, mut dv, mut kq) = (0.0, 0.0, 0.0, 0.0);
             for l in 0..nq {
-                ma += self.mqq[(k, l)] * a[iq + l];
-                let d = self.d[(k, l)];
-                dq += d * q[iq + l];
-                dv += d * v[iq + l];
-                kq += self.kqq[(k, l)] * q[iq + l];
+                ma += mrow[l] * aq_[l];
+                let d = drow[l];
+                dq += d * qq[l];
+                dv += d * vq[l];
+                kq += krow[l] * qq[l];
             }
             let (mut ctp, mut ctv) = (self.aq[k], 0.0);
             for i in 0..np {
-                let c = self.c[(i, k)];
-                ctp += c * q[o + i];
-                ctv += c * v[o + i];
+                ctp += ccol[i] * qp[i];
+                ctv += ccol[i] * vp[i];
             }
             r[iq + k] = ma + 2.0 * om * ctv + omd * ctp + kq - om2 * dq;
             if free {
-                jtot += q[iq + k] * dq;
-                dot += q[iq + k] * dv;
-                coupling += ctp * a[iq + k];
+                jtot += qq[k] * dq;
+                dot += qq[k] * dv;
+                coupling += ctp * aq_[k];
             }
         }
         if free {

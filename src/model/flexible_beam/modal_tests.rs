@@ -42,35 +42,10 @@ fn cf_basis(nb: usize, nr: usize, stiffening: bool) -> Basis {
     }
 }
 
-/// The constrained basis: clamped-clamped modes plus the static shapes, with the clamp and
-/// the free end's conditions as constraints.
+/// The constrained basis: two clamped-clamped rod and four beam modes plus the static shapes,
+/// with the clamp and the free end's conditions as constraints (`formulations::aigc_basis`).
 fn aigc_basis() -> Basis {
-    let bc = |field, at_tip, derivative| Bc {
-        field,
-        at_tip,
-        derivative,
-    };
-    Basis {
-        stretch: vec![
-            Shape::ClampedClampedRod(1),
-            Shape::ClampedClampedRod(2),
-            Shape::Linear(0),
-            Shape::Linear(1),
-        ],
-        lateral: (1..=4)
-            .map(Shape::ClampedClampedBending)
-            .chain((0..4).map(Shape::Hermite))
-            .collect(),
-        stiffening: true,
-        constraints: vec![
-            bc(Field::Stretch, false, 0),
-            bc(Field::Lateral, false, 0),
-            bc(Field::Lateral, false, 1),
-            bc(Field::Stretch, true, 1),
-            bc(Field::Lateral, true, 2),
-            bc(Field::Lateral, true, 3),
-        ],
-    }
+    super::formulations::aigc_basis(2, 4)
 }
 
 /// A smooth, non-trivial state of length `n`.

@@ -20,13 +20,11 @@
 use nalgebra::DVector;
 
 use super::base::Base;
-use super::fe::Beam;
 use crate::structural::SecondOrder;
 
 /// The observable quantities of a beam model (implemented by `fe_exact` and the modal
 /// models).
 pub trait Beamlike: SecondOrder {
-    fn beam(&self) -> Beam;
     fn base(&self) -> Base;
     /// The lateral tip displacement in the base frame (m).
     fn tip_deflection(&self, q: &DVector<f64>) -> f64;

@@ -529,7 +529,7 @@ pub fn run_ode<S: Beamlike + Clone, const D: usize>(
             conditioning: s.conditioning,
             residual: s.residual,
         }));
-        add_stats(&mut out.stats, &part.stats);
+        out.stats += part.stats;
         if part.failure.is_some() {
             out.failure = part.failure.map(|mut f| {
                 f.t += a;
@@ -548,14 +548,6 @@ pub fn run_ode<S: Beamlike + Clone, const D: usize>(
         out.samples.drain(1..last);
     }
     Ok(out)
-}
-
-fn add_stats(a: &mut Stats, b: &Stats) {
-    a.steps += b.steps;
-    a.rhs_evals += b.rhs_evals;
-    a.newton_iters += b.newton_iters;
-    a.rejected += b.rejected;
-    a.normalizations += b.normalizations;
 }
 
 /// Hairer's componentwise scale: every component is additive.

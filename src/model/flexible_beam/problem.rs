@@ -88,9 +88,6 @@ impl BeamProblem {
         })
     }
 
-    pub(super) fn case_name(&self) -> &str {
-        &self.case
-    }
 
     /// One run of a registered variant with this scene's setup (or `setup`).
     pub(super) fn run_with(

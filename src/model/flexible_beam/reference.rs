@@ -8,25 +8,22 @@
 //! twice the step, over 3: Newmark is of order 2), the mesh estimate (the difference from half
 //! the elements, over 3: the element's frequencies converge as the square of the element
 //! length), and the cross-check (the largest difference from a run that differs in mesh,
-//! integrator and formulation: `modal_stiffened` with the case's modes, `gen_alpha`, when
-//! registered; else `fe_exact` at half the elements under `gen_alpha`). `reference --check`
-//! recomputes the run at twice the step (half the work) and passes when it lies within the
-//! claim. Where it fails: a claim is only as good as the estimates' asymptotic regime; the
-//! note of the issue that built it shows the mesh ladder.
+//! integrator and formulation: `modal_stiffened` with the case's modes under `dop853` at
+//! tolerance 1e-10). The file also holds one self-convergence track per formulation
+//! (`family::self_convergence`), the floor of that formulation's `tip_time_error_max`.
+//! `reference --check` recomputes the run at twice the step (half the work) and passes when
+//! it lies within the claim plus three time estimates (the coarser run's own time error is
+//! four times the stored run's). Where it fails: a claim is only as good as the estimates'
+//! asymptotic regime; the note of the issue that built it shows the mesh ladder.
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-use super::base::Base;
-use super::fe::Fe;
+use super::family::{Track, track};
 use super::observe::BeamObs;
 use super::problem::{BeamProblem, Setup};
-use super::run::run_structural;
 use crate::problem::Problem;
 use crate::reference::{self, Stored};
-use crate::run::{Observe, RunOutput, Stepping};
-use crate::structural::gen_alpha::GenAlpha;
-use crate::structural::newmark::Newmark;
-use crate::structural::newton::NewtonOptions;
+use crate::run::Stepping;
 use crate::summary;
 
 /// Max differences of the two scored columns.
@@ -127,51 +124,15 @@ impl Stored for BeamReference {
     }
 }
 
-/// `fe_exact` with `elements` under Newmark (`gen_alpha` when `dissipative`) at `h`, sampled
-/// on the score grid.
-fn fe_run(
-    setup: &Setup,
-    elements: usize,
-    h: f64,
-    dissipative: bool,
-) -> Result<Vec<(f64, BeamObs)>, String> {
+/// `fe_exact` with `elements` under Newmark at `h`, on the score grid.
+fn fe_run(setup: &Setup, elements: usize, h: f64) -> Result<Track, String> {
     let mut s = setup.clone();
-    s.grid.sample_every = s.grid.score_every;
-    let build = |base: Base| Fe::new(s.scene.beam, elements, base);
-    let opts = NewtonOptions::default();
-    let out: RunOutput<BeamObs> = if dissipative {
-        run_structural(
-            &build,
-            s.scene.base,
-            &s.scene.breakpoints,
-            &mut GenAlpha::new(0.9, opts)?,
-            h,
-            &s.grid,
-            &s.limits,
-            &Observe::Grid,
-            s.bound(),
-        )?
-    } else {
-        run_structural(
-            &build,
-            s.scene.base,
-            &s.scene.breakpoints,
-            &mut Newmark::new(opts)?,
-            h,
-            &s.grid,
-            &s.limits,
-            &Observe::Grid,
-            s.bound(),
-        )?
-    };
-    if let Some(f) = out.failure {
-        return Err(format!(
-            "fe_exact with {elements} elements at {h} s failed: {} at t = {}",
-            f.kind.name(),
-            f.t
-        ));
-    }
-    Ok(out.scored().map(|x| (x.t, x.obs)).collect())
+    s.numerics.elements = elements;
+    let v = super::family::FAMILY
+        .find("none", "newmark", "fe_exact")
+        .ok_or("newmark/fe_exact is not registered")?;
+    track(&s, v, Stepping::Dt(h))?
+        .map_err(|e| format!("fe_exact with {elements} elements at {h} s failed: {e}"))
 }
 
 fn diff(a: &[(f64, BeamObs)], b: &[(f64, BeamObs)]) -> Result<Diff, String> {
@@ -208,16 +169,11 @@ pub fn make(p: &BeamProblem, root: &Path) -> Result<String, String> {
     let s = &p.setup;
     let n = s.numerics.reference_elements;
     let h = s.scene.reference_dt.unwrap_or(s.numerics.reference_dt);
-    let main = fe_run(s, n, h, false)?;
-    let coarse_t = fe_run(s, n, 2.0 * h, false)?;
-    let coarse_m = fe_run(s, (n / 2).max(1), h, false)?;
-    let (cross_method, cross) = super::family::cross_check(s).unwrap_or_else(|| {
-            (
-                format!("fe_exact, {} elements, gen_alpha at {h} s", (n / 2).max(1)),
-                fe_run(s, (n / 2).max(1), h, true),
-            )
-        });
-    let cross = diff(&main, &cross?)?;
+    let main = fe_run(s, n, h)?;
+    let coarse_t = fe_run(s, n, 2.0 * h)?;
+    let coarse_m = fe_run(s, (n / 2).max(1), h)?;
+    let (cross_method, cross) = super::family::cross_check(s)?;
+    let cross = diff(&main, &cross.map_err(|e| format!("the cross-check failed: {e}"))?)?;
     let time_estimate = third(diff(&main, &coarse_t)?);
     let mesh_estimate = third(diff(&main, &coarse_m)?);
     let claim = max3(cross, time_estimate, mesh_estimate);
@@ -227,7 +183,7 @@ pub fn make(p: &BeamProblem, root: &Path) -> Result<String, String> {
         .fold(0.0, f64::max);
     let col = |f: fn(&BeamObs) -> f64| main.iter().map(|(_, o)| f(o)).collect::<Vec<f64>>();
     let r = BeamReference {
-        case: p.case_name().into(),
+        case: p.case().into(),
         scene: p.scene().into(),
         t: main.iter().map(|x| x.0).collect(),
         tip_deflection: col(|o| o.tip_deflection),
@@ -239,7 +195,7 @@ pub fn make(p: &BeamProblem, root: &Path) -> Result<String, String> {
         provenance: Provenance {
             command: format!(
                 "mbdbench reference --case {} --scene {}",
-                p.case_name(),
+                p.case(),
                 p.scene()
             ),
             method: format!("fe_exact, {n} elements, newmark at {h} s"),
@@ -261,7 +217,7 @@ pub fn make(p: &BeamProblem, root: &Path) -> Result<String, String> {
         inputs_sha256: p.inputs_sha256().into(),
     };
     let path =
-        reference::save_as(root, p.case_name(), p.scene(), &r).map_err(|e| e.to_string())?;
+        reference::save_as(root, p.case(), p.scene(), &r).map_err(|e| e.to_string())?;
     Ok(format!(
         "{}: {}; cross-check ({}) tip {:.2e} m, hub rate {:.2e} rad/s; time estimate tip {:.2e}; \
          mesh estimate tip {:.2e}; claim tip {:.2e} m ({:.3} % of the peak {:.4} m)",
@@ -285,8 +241,6 @@ fn self_tracks(s: &Setup) -> Result<Vec<SelfTrack>, String> {
     let mut out = vec![];
     // Formulations that share a tight run (the AIGC forms) share its track.
     let mut cache: Vec<(usize, SelfTrack)> = vec![];
-    let mut g = s.clone();
-    g.grid.sample_every = g.grid.score_every;
     let h_ref = s.scene.reference_dt.unwrap_or(s.numerics.reference_dt);
     for f in super::family::FORMULATIONS {
         let Some((v, plan, method)) = super::family::self_convergence(f, h_ref) else {
@@ -300,11 +254,7 @@ fn self_tracks(s: &Setup) -> Result<Vec<SelfTrack>, String> {
             continue;
         }
         let run = |st| -> Result<Result<Vec<f64>, String>, String> {
-            let out = BeamProblem::run_with(&g, v, st, &Observe::Grid)?;
-            Ok(match out.failure {
-                Some(f) => Err(format!("{} at t = {}: {}", f.kind.name(), f.t, f.message)),
-                None => Ok(out.scored().map(|x| x.obs.tip_deflection).collect()),
-            })
+            Ok(track(s, v, st)?.map(|t| t.iter().map(|x| x.1.tip_deflection).collect()))
         };
         let max_diff = |a: &[f64], b: &[f64]| {
             a.iter()
@@ -363,15 +313,10 @@ fn self_tracks(s: &Setup) -> Result<Vec<SelfTrack>, String> {
 /// Recomputes the reference at twice its step and compares it with the stored one.
 pub fn check(p: &BeamProblem, root: &Path) -> Result<(bool, String), String> {
     let (stored, _): (BeamReference, _) =
-        reference::load_as(root, p.case_name(), p.scene(), p.inputs_sha256())
+        reference::load_as(root, p.case(), p.scene(), p.inputs_sha256())
             .map_err(|e| e.to_string())?;
     let s = &p.setup;
-    let now = fe_run(
-        s,
-        stored.provenance.elements,
-        2.0 * stored.provenance.step,
-        false,
-    )?;
+    let now = fe_run(s, stored.provenance.elements, 2.0 * stored.provenance.step)?;
     let track: Vec<(f64, BeamObs)> = stored
         .t
         .iter()
@@ -401,7 +346,7 @@ pub fn check(p: &BeamProblem, root: &Path) -> Result<(bool, String), String> {
         format!(
             "{}/{}: recomputed at twice the step vs stored: tip {:.2e} m, hub rate {:.2e} rad/s \
              (bounds: claim + 3 time estimates {:.2e}, {:.2e})",
-            p.case_name(),
+            p.case(),
             p.scene(),
             d.tip_deflection,
             d.hub_rate,

@@ -12,7 +12,9 @@
 use super::base::Base;
 use super::observe::{BeamObs, Beamlike, observe};
 use crate::integrate::{Failure, FailureKind, Limits, Stats};
-use crate::run::{Grid, Observe, RunOutput, Sample, divides, output_grid, over_budget, reserve};
+use crate::run::{
+    FixedPlan, Grid, Observe, RunOutput, Sample, divides, fixed_plan, over_budget, reserve,
+};
 use crate::structural::method::Method;
 use crate::structural::state::State;
 
@@ -72,8 +74,6 @@ pub fn run_structural<S: Beamlike, M: Method<S>>(
     observe_at: &Observe,
     bound: f64,
 ) -> Result<RunOutput<BeamObs>, String> {
-    let n_total = divides(grid.t_end, h_nominal)
-        .ok_or_else(|| format!("step {h_nominal} does not divide t_end = {}", grid.t_end))?;
     let all = match observe_at {
         Observe::Grid => true,
         Observe::Final => false,
@@ -81,15 +81,13 @@ pub fn run_structural<S: Beamlike, M: Method<S>>(
             return Err("the beam's structural runs observe on the grid or at the end".into());
         }
     };
-    let (dt_out, n_out, stride) = output_grid(grid, Some(h_nominal))?;
-    let per_out = divides(dt_out, h_nominal)
-        .ok_or_else(|| format!("step {h_nominal} does not divide the output interval {dt_out}"))?;
-    if per_out * n_out != n_total {
-        return Err(format!(
-            "inconsistent grid: {per_out} x {n_out} != {n_total} steps"
-        ));
-    }
-    let h = grid.t_end / n_total as f64;
+    let FixedPlan {
+        n_total,
+        h,
+        n_out,
+        per_out,
+        stride,
+    } = fixed_plan(grid, h_nominal)?;
     let mut out = RunOutput {
         samples: Vec::with_capacity(if all { reserve(n_out) } else { 2 }),
         score_stride: stride,
