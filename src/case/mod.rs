@@ -214,8 +214,9 @@ pub struct StabilitySpec {
     /// (`model::linear_modes`).
     pub periods: f64,
     /// rad: the accuracy bound of `largest_accurate_dt` (max geodesic rotation error over the
-    /// score times of the horizon).
-    pub rotation_error_max: f64,
+    /// score times of the horizon); the rigid body's files must give it (its loader checks),
+    /// families without a rotation have none.
+    pub rotation_error_max: Option<f64>,
     /// Scenes of the quick tier (each names a scene of the case).
     pub quick: Vec<String>,
 }
@@ -609,11 +610,16 @@ impl Ctx<'_> {
 
     fn stability(&self, st: RawStability, scenes: &[Scene]) -> Res<StabilitySpec> {
         let periods = self.positive("stability.periods", st.periods, "a number of periods")?;
-        let rotation_error_max = self.positive(
-            "stability.rotation_error_max",
-            st.rotation_error_max,
-            "a rotation error bound in rad",
-        )?;
+        let rotation_error_max = st
+            .rotation_error_max
+            .map(|x| {
+                self.positive(
+                    "stability.rotation_error_max",
+                    x,
+                    "a rotation error bound in rad",
+                )
+            })
+            .transpose()?;
         for (i, name) in st.quick.iter().enumerate() {
             if !scenes.iter().any(|s| &s.name == name) {
                 return self.err(

@@ -12,9 +12,16 @@ use super::{RawGate, RawLadders, ReferenceKind};
 #[serde(deny_unknown_fields)]
 pub struct RawStability {
     pub(super) periods: f64,
-    pub(super) rotation_error_max: f64,
+    pub(super) rotation_error_max: Option<f64>,
     #[serde(default)]
     pub(super) quick: Vec<String>,
+}
+
+impl RawStability {
+    /// `rotation_error_max` as written (the rigid body requires it, other families reject it).
+    pub fn rotation_error_max(&self) -> Option<f64> {
+        self.rotation_error_max
+    }
 }
 
 /// The keys every case file has, as written (split off a family's raw case by

@@ -273,6 +273,17 @@ fn wrong_type() {
 }
 
 // A missing required key is named, and a TOML syntax error gives file and line.
+/// The rigid body's step search needs a rotation bound: a `[stability]` table without
+/// `rotation_error_max` is refused at loading with that key named.
+#[test]
+fn rigid_stability_needs_a_rotation_bound() {
+    let e = error_at(
+        &edited("rotation_error_max = 0.1\n", ""),
+        "stability.rotation_error_max",
+    );
+    assert!(e.message.contains("missing"), "{e}");
+}
+
 #[test]
 fn missing_key_and_syntax_error() {
     let text = edited(

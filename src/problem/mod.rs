@@ -324,6 +324,13 @@ pub trait Problem: Send + Sync {
         let _ = formulation;
         self.accuracy_claim(metric)
     }
+    /// The period (s) of the scene's first (slowest) elastic mode: the time scale of the
+    /// seam's step search (`stability::seam_search`), whose horizon is a number of these
+    /// periods. None for a family with a study of its own (the rigid body's linearised modes,
+    /// `stability::search`) or a scene without such a mode.
+    fn first_period(&self) -> Option<f64> {
+        None
+    }
     /// One run. `Err` when the run cannot start (e.g. its step count is over the budget).
     fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String>;
     /// Computes the scene's reference (its primary trajectory, the cross-check by a run that

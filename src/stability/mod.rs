@@ -13,16 +13,20 @@
 //!   t^(1/2));
 //! - `singularity`: `gimbal_lock`'s spin at approach distances 1e-1 ... 1e-12, error, work and
 //!   conditioning against the distance;
-//! - `sensitivity`: the growth of a 1e-9 perturbation of each scene's initial state.
+//! - `sensitivity`: the growth of a 1e-9 perturbation of each scene's initial state;
+//! - `seam_search`: the largest stable step of the families without a study of their own
+//!   (the flexible beam), through `Problem::run`, over periods of each scene's first mode.
 //!
 //! Every part is deterministic: its records (all but `wall_s`, `created_utc`, `env`) do not
-//! depend on `--jobs`. Every part declares the model families it applies to (`FAMILIES` in
-//! its file; today all five are the rigid body's) and sees only the cases of those families.
+//! depend on `--jobs`. Each of the first five declares the model families it applies to
+//! (`FAMILIES` in its file; the rigid body) and sees only their cases; `seam_search` takes
+//! the cases of every other family.
 use std::path::PathBuf;
 
 use crate::summary::{FitRecord, Record};
 
 pub mod long_horizon;
+pub mod seam_search;
 pub mod search;
 pub mod sensitivity;
 pub mod singularity;
@@ -62,6 +66,27 @@ impl Part {
 /// on `so3` in the body formulation.
 pub const QUICK_PARAMS: &[&str] = &["so3"];
 pub const QUICK_INTEGRATORS: &[&str] = &["euler", "rk4", "simo_wong"];
+
+/// The integrators of the quick tier's seam search (the quick scenes' other variants are
+/// searched in the full tier): the explicit method whose limit the search measures and the
+/// implicit ones of the structural and ODE forms.
+pub const SEAM_QUICK_INTEGRATORS: &[&str] =
+    &["rk4", "newmark", "implicit_midpoint", "gen_alpha_i3"];
+
+/// `filter` narrowed to the seam search's quick-tier integrators.
+pub fn seam_quick_filter(filter: &crate::suite::VariantFilter) -> crate::suite::VariantFilter {
+    let mut f = filter.clone();
+    f.integrator = SEAM_QUICK_INTEGRATORS
+        .iter()
+        .filter(|x| filter.integrator.is_empty() || filter.integrator.iter().any(|u| u == *x))
+        .map(|x| x.to_string())
+        .collect();
+    if f.integrator.is_empty() {
+        // The user's integrators and the quick ones do not meet: nothing to search.
+        f.integrator = vec![String::new()];
+    }
+    f
+}
 
 /// `filter` narrowed to the quick tier's variants.
 pub fn quick_filter(filter: &crate::suite::VariantFilter) -> crate::suite::VariantFilter {
@@ -194,11 +219,18 @@ pub fn run_study(
         t_end: None,
     }
     .deduped();
+    // The step search of the families without a study of their own, through the seam.
+    let seam_filter = if opts.quick {
+        seam_quick_filter(filter)
+    } else {
+        filter.clone()
+    };
+    let mut all = seam_search::study(cases, case_filter, scene_filter, &seam_filter, opts)?;
     // The parts below are the rigid body's (each file's FAMILIES).
     let Some((cases, case_filter, scene_filter)) =
         part_cases(cases, search::FAMILIES, case_filter, scene_filter)
     else {
-        return write_study(Part::default(), selection, opts);
+        return write_study(all, selection, opts);
     };
     let (cases, case_filter, scene_filter) = (&cases[..], &case_filter[..], &scene_filter[..]);
     let scenes = study_scenes(cases, case_filter, scene_filter, opts.quick)?;
@@ -207,7 +239,7 @@ pub fn run_study(
     } else {
         filter.clone()
     };
-    let mut all = step_search(&scenes, &tier_filter, opts, "steps")?;
+    all.extend(step_search(&scenes, &tier_filter, opts, "steps")?);
     let wanted = |case: &str| case_filter.is_empty() || case_filter.iter().any(|c| c == case);
     if wanted(stiffness::CASE) && scene_filter.is_empty() {
         let done = all.records.clone();

@@ -99,6 +99,12 @@ impl StudyScene {
         let Some(spec) = &c.stability else {
             return Ok(None);
         };
+        if spec.rotation_error_max.is_none() {
+            return Err(format!(
+                "{}: [stability]: no rotation_error_max; the accurate-step search needs a rotation error bound in rad",
+                c.file
+            ));
+        }
         let period = linear_modes::fastest_period(&plan.setup.body, &plan.setup.initial)
             .ok_or_else(|| {
                 format!(
@@ -167,7 +173,7 @@ pub struct Limit {
 }
 
 impl Limit {
-    fn from_failure(f: &Failure) -> Limit {
+    pub(crate) fn from_failure(f: &Failure) -> Limit {
         Limit {
             kind: f.kind,
             t: f.t,
@@ -322,7 +328,8 @@ fn observe_run(
             }
             Some(crate::run::RotationWatch {
                 reference: refs.into(),
-                max: scene.spec.rotation_error_max,
+                // Present: `StudyScene::new` and the rigid loader check it.
+                max: scene.spec.rotation_error_max.unwrap_or(f64::INFINITY),
             })
         }
     };
@@ -401,15 +408,20 @@ impl Found {
         }
     }
 
-    /// The sentence for `metric_reasons`.
+    /// The sentence for `metric_reasons` (this search's cap, `t_h / CAP_STEPS`).
     pub fn reason(&self, horizon: f64) -> String {
+        self.reason_with(&format!(
+            "dt = t_h / {CAP_STEPS}, tol = {TOL_CAP:e}; t_h = {horizon:.6} s"
+        ))
+    }
+
+    /// The sentence for `metric_reasons`, the cap described by `cap`.
+    pub fn reason_with(&self, cap: &str) -> String {
         if let Some(e) = &self.error {
             return format!("search not completed: {e}");
         }
         match (&self.value, self.capped, &self.limit) {
-            (Some(_), true, _) => format!(
-                "bounded up to the cap (dt = t_h / {CAP_STEPS}, tol = {TOL_CAP:e}; t_h = {horizon:.6} s)"
-            ),
+            (Some(_), true, _) => format!("bounded up to the cap ({cap})"),
             (Some(_), false, Some((at, l))) => format!("limited by {}", l.text(at)),
             (None, _, Some((at, l))) => format!("nothing passed: {}", l.text(at)),
             _ => "nothing passed".into(),
@@ -417,13 +429,15 @@ impl Found {
     }
 }
 
-/// Bisection-and-ladder search over step counts from `n_start` up, for the first `n` that
-/// passes `pass`.
-fn search_steps(
+/// Bisection-and-ladder search over step counts from `n_start` up (doubling, at most
+/// `max_steps`), for the first `n` that passes `pass`; the step of `n` is `unit / n`, and a
+/// pass at `n = cap` is the cap.
+pub(crate) fn search_steps(
     n_start: u64,
+    cap: u64,
     max_steps: u64,
     mut pass: impl FnMut(u64) -> Verdict,
-    horizon: f64,
+    unit: f64,
 ) -> Found {
     let mut probes = 0;
     let mut last_fail: Option<(u64, Limit)> = None;
@@ -452,9 +466,9 @@ fn search_steps(
     };
     let Some((mut lo, mut lo_limit)) = last_fail else {
         return Found {
-            value: Some(horizon / hi as f64),
+            value: Some(unit / hi as f64),
             n: Some(hi),
-            capped: hi == CAP_STEPS,
+            capped: hi == cap,
             limit: None,
             probes,
             error: None,
@@ -473,11 +487,11 @@ fn search_steps(
         }
     }
     Found {
-        value: Some(horizon / hi as f64),
+        value: Some(unit / hi as f64),
         n: Some(hi),
         capped: false,
         limit: Some((
-            format!("dt = {:.6e} (n = {lo})", horizon / lo as f64),
+            format!("dt = {:.6e} (n = {lo})", unit / lo as f64),
             lo_limit,
         )),
         probes,
@@ -557,6 +571,7 @@ pub fn search(v: &Variant, scene: &StudyScene, reference: &OnTheFly) -> (Found, 
         let h = scene.horizon;
         let stable = search_steps(
             CAP_STEPS,
+            CAP_STEPS,
             scene.max_steps,
             |n| probe(v, scene, Probe::Steps(n), None),
             h,
@@ -574,6 +589,7 @@ pub fn search(v: &Variant, scene: &StudyScene, reference: &OnTheFly) -> (Found, 
         };
         let accurate = search_steps(
             n0,
+            CAP_STEPS,
             scene.max_accurate_steps,
             |n| probe(v, scene, Probe::Steps(n), Some(reference)),
             h,
@@ -600,6 +616,7 @@ pub const METRICS: &[&str] = &[
     "largest_accurate_tol",
     "stability_horizon",
     "fastest_period",
+    "first_period",
 ];
 
 /// The record of one search (`dt`/`tol` absent: the record is per variant, not per ladder
@@ -670,6 +687,7 @@ mod tests {
     fn step_search_brackets_the_boundary() {
         let f = search_steps(
             CAP_STEPS,
+            CAP_STEPS,
             1 << 20,
             |n| {
                 if n >= 1377 {
@@ -692,17 +710,23 @@ mod tests {
             "{f:?}"
         );
         assert!(f.reason(10.0).starts_with("limited by non_finite"));
-        let capped = search_steps(CAP_STEPS, 1 << 20, |_| Verdict::Pass, 10.0);
+        let capped = search_steps(CAP_STEPS, CAP_STEPS, 1 << 20, |_| Verdict::Pass, 10.0);
         assert!(capped.capped && capped.n == Some(CAP_STEPS));
         assert!(capped.reason(10.0).starts_with("bounded up to the cap"));
-        let none = search_steps(CAP_STEPS, 640, |n| fail(n as f64), 10.0);
+        let none = search_steps(CAP_STEPS, CAP_STEPS, 640, |n| fail(n as f64), 10.0);
         assert_eq!(none.value, None);
         assert!(
             none.reason(10.0).contains("nothing passed"),
             "{}",
             none.reason(10.0)
         );
-        let err = search_steps(CAP_STEPS, 640, |_| Verdict::Error("broken".into()), 10.0);
+        let err = search_steps(
+            CAP_STEPS,
+            CAP_STEPS,
+            640,
+            |_| Verdict::Error("broken".into()),
+            10.0,
+        );
         assert_eq!(err.value, None);
         assert!(err.reason(10.0).contains("broken"));
     }

@@ -146,6 +146,16 @@ pub fn load(file: &str, text: &str) -> Result<Case, CaseError> {
     let raw: RawCase = crate::case::parse(file, text)?;
     let (shared, own, scenes) = raw.split();
     let case_scale = shared.energy_scale;
+    if shared
+        .stability
+        .as_ref()
+        .is_some_and(|st| st.rotation_error_max().is_some())
+    {
+        return Ctx { file }.err(
+            "stability.rotation_error_max",
+            "the beam has no rotation error; its step search judges boundedness only (remove the key)",
+        );
+    }
     let case = Ctx { file }.assemble(
         &super::family::FAMILY,
         shared,

@@ -26,10 +26,11 @@ fn problem(scene: &str, t_end: Option<f64>) -> Box<dyn Problem> {
 /// Each kind of bad input is refused at loading with the key that holds it: a non-positive
 /// stiffness or mass per length, an element count of 0, a mode count of 0 or one whose state
 /// size is not registered, Baumgarte settings whose constraint dynamics are not stable, a base
-/// breakpoint left out, and a breakpoint off the score grid.
+/// breakpoint left out, a breakpoint off the score grid, and a rotation bound in the step
+/// search's `[stability]` (the beam has no rotation error to bound).
 #[test]
 fn bad_input_names_the_key() {
-    let cases: [(&str, &str, &str); 9] = [
+    let cases: [(&str, &str, &str); 10] = [
         ("ei = 1.4e4", "ei = -1.4e4", "scene[0].beam.ei"),
         ("rho_a = 1.2 }", "rho_a = 0.0 }", "scene[0].beam.rho_a"),
         ("elements = 10", "elements = 0", "numerics.elements"),
@@ -54,6 +55,11 @@ fn bad_input_names_the_key() {
             "breakpoints = [15.0]\nenergy_scale = 3200.0",
             "breakpoints = [15.0, 15.05]\nenergy_scale = 3200.0",
             "scene[0].breakpoints[1]",
+        ),
+        (
+            "periods = 20.0\n",
+            "periods = 20.0\nrotation_error_max = 0.1\n",
+            "stability.rotation_error_max",
         ),
     ];
     for (from, to, key) in cases {

@@ -360,6 +360,15 @@ impl Problem for BeamProblem {
             .find(|x| x.formulation == formulation)
             .and_then(|x| x.time_estimate)
     }
+    /// The clamped-free beam's first bending period at rest, `2 pi / ((beta_1 L)^2
+    /// sqrt(EI / (rho A L^4)))` with `beta_1 L = 1.8751` (3.80 rad/s, 1.65 s on the spin-ups;
+    /// 0.0440 rad/s, 143 s on flexsat, whose free hub raises it a little).
+    fn first_period(&self) -> Option<f64> {
+        let b = &self.setup.scene.beam;
+        let z = super::shapes::clamped_free_root(1);
+        let omega = z * z * (b.ei / (b.rho_a * b.l.powi(4))).sqrt();
+        Some(2.0 * std::f64::consts::PI / omega)
+    }
     fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String> {
         let observe = match want {
             Want::Timing => Observe::Final,

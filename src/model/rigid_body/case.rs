@@ -202,6 +202,16 @@ pub fn load(file: &str, text: &str) -> Result<Case, CaseError> {
     let raw: RawCase = crate::case::parse(file, text)?;
     let (shared, own, scenes) = raw.split();
     let cx = Ctx { file };
+    if shared
+        .stability
+        .as_ref()
+        .is_some_and(|st| st.rotation_error_max().is_none())
+    {
+        return cx.err(
+            "stability.rotation_error_max",
+            "missing; the rigid body's accurate-step search needs a rotation error bound in rad",
+        );
+    }
     cx.assemble(
         &super::family::FAMILY,
         shared,

@@ -7,7 +7,7 @@
 //!   file's scenes first, then generated ones such as the stiffness ladder's `two_angles_k1e2`,
 //!   `two_angles_k1e2_T10`, folded), each variant's largest stable and accurate step, what
 //!   limits each (shortened; the full `metric_reasons` text on hover and in the markdown), and
-//!   `t_h`. A step that passed at the cap (`t_h / 20`) is written `(cap)` and "bounded up to the
+//!   `t_h`. A step that passed at the cap (the coarsest step tried) is written `(cap)` and "bounded up to the
 //!   cap": a lower bound, not a limit;
 //! - stiffness ladder (fits whose metric ends in `_vs_stiffness`): log-log step against the
 //!   stiffness factor, one line per variant through the fit's measured points, its slope in the
@@ -352,17 +352,27 @@ pub fn section(
 
     let mut text = vec![];
     if !search.is_empty() {
-        text.push(
+        let seam = search
+            .iter()
+            .any(|r| r.metrics.contains_key("first_period"));
+        text.push(if seam {
+            "Step search: per scene, the largest fixed step at which each variant stays \
+             stable (no typed failure such as the divergence bound, finite scores) over the \
+             horizon t_h (periods of the scene's first mode; probes dt = s / n with s the \
+             sample interval, from the cap s down, bisected to 5 %); adaptive variants and \
+             accuracy are not searched here."
+                .to_string()
+        } else {
             "Step search: per scene, the largest step (or loosest tolerance) at which each \
              variant stays stable, and stays accurate, over the horizon t_h (periods of the \
              scene's fastest linearised mode; probes dt = t_h / n from the cap t_h / 20 down, \
              bisected to 5 %)."
-                .to_string(),
-        );
+                .to_string()
+        });
         text.push(
             "In the tables, 'what limits it' is the failure at the next coarser probe (hover \
              for the full text); '(cap)' with 'bounded up to the cap' means the coarsest step \
-             tried, t_h / 20, passed: a lower bound, no limit was found."
+             tried passed: a lower bound, no limit was found."
                 .to_string(),
         );
         if search.iter().any(|r| r.key.integrator == "euler") {

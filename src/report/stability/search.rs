@@ -41,7 +41,7 @@ pub(super) fn step_table(case: &str, scene: &str, records: &[&Record]) -> Table 
         kind: "stability-steps",
         title: format!("{case} / {scene}: largest stable and accurate step"),
         note: format!(
-            "{horizon}; {} variant{}, {capped_n} stable up to the cap (t_h / 20).",
+            "{horizon}; {} variant{}, {capped_n} stable up to the cap (the coarsest step tried).",
             rows.len(),
             if rows.len() == 1 { "" } else { "s" }
         ),
@@ -86,7 +86,7 @@ pub(super) fn search_facts(search: &[&Record], case: Option<&Case>) -> Vec<Strin
         .collect();
     if !always.is_empty() {
         out.push(format!(
-            "Stable up to the cap (t_h / 20) in every searched scene, i.e. no stability limit \
+            "Stable up to the cap (the coarsest step tried) in every searched scene, i.e. no stability limit \
              found: {}.",
             always.join(", ")
         ));
