@@ -404,20 +404,34 @@ pub const SERIES_DIGITS: usize = 6;
 
 /// Keeps the series only of the runs a figure draws: per scene and variant that one of the
 /// family's time-series selections admits, its coarsest completed ladder point (largest
-/// `dt`, loosest `tol`: `report::timeseries`); every other record gets `series: null` and
-/// the reason. A full run wrote 6,895 series files (129 MB) before; 474 (5.3 MB) remain.
+/// `dt`, loosest `tol`: `report::timeseries`), or, for a family whose figures draw failed
+/// runs (`Figures::draw_failed`) and a variant with no completed run, its finest failed run
+/// (up to the failure); every other record gets `series: null` and the reason. A full run
+/// wrote 6,895 series files (129 MB) before; 474 (5.3 MB) remain.
 fn keep_drawn_series(problems: &[Box<dyn Problem>], jobs: &[Job], done: &mut [Done]) {
     let mut coarsest: BTreeMap<(usize, [usize; 3]), (usize, f64)> = BTreeMap::new();
+    let mut finest_failed: BTreeMap<(usize, [usize; 3]), (usize, f64)> = BTreeMap::new();
     for (k, (job, d)) in jobs.iter().zip(done.iter()).enumerate() {
-        if d.record.status != Status::Ok || d.series.is_none() {
+        if d.series.is_none() {
             continue;
         }
-        let e = coarsest
-            .entry((job.problem, d.record.variant_order()))
-            .or_insert((k, job.value));
-        if job.value > e.1 {
-            *e = (k, job.value);
+        let key = (job.problem, d.record.variant_order());
+        if d.record.status == Status::Ok {
+            let e = coarsest.entry(key).or_insert((k, job.value));
+            if job.value > e.1 {
+                *e = (k, job.value);
+            }
+        } else if problems[job.problem].family().figures.draw_failed
+            && d.record.status == Status::Failed
+        {
+            let e = finest_failed.entry(key).or_insert((k, job.value));
+            if job.value < e.1 {
+                *e = (k, job.value);
+            }
         }
+    }
+    for (key, failed) in finest_failed {
+        coarsest.entry(key).or_insert(failed);
     }
     for (k, (job, d)) in jobs.iter().zip(done.iter_mut()).enumerate() {
         let v = job.variant;
@@ -428,7 +442,9 @@ fn keep_drawn_series(problems: &[Box<dyn Problem>], jobs: &[Job], done: &mut [Do
             .timeseries
             .iter()
             .any(|(_, sel)| sel.admit.admits(v.param, v.integrator, v.info.adaptive));
-        let why = match coarsest.get(&(job.problem, d.record.variant_order())) {
+        let chosen = coarsest.get(&(job.problem, d.record.variant_order()));
+        let why = match chosen {
+            Some(&(best, _)) if best == k && d.record.status == Status::Failed => None,
             _ if d.record.status != Status::Ok => {
                 Some("not written: a failed run (no figure draws it)".to_string())
             }

@@ -409,6 +409,11 @@ pub struct Series {
     )]
     pub primary_error: Option<Vec<f64>>,
     pub primary_metric: String,
+    /// A family's own quantities at the score times, by name (the flexible beam's
+    /// `tip_deflection` and the reference's `tip_deflection_reference`, which its
+    /// tip-over-time figure draws); null where a run has no value. Absent when empty.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub tracks: BTreeMap<String, Vec<Option<f64>>>,
 }
 
 /// `n` and a noun, plural past one: `1 scene`, `7 scenes`.
@@ -446,6 +451,14 @@ impl Series {
             conditioning: r(&self.conditioning),
             primary_error: self.primary_error.as_deref().map(r),
             primary_metric: self.primary_metric.clone(),
+            tracks: self
+                .tracks
+                .iter()
+                .map(|(k, v)| {
+                    let v = v.iter().map(|c| c.map(|x| round_sig(x, digits))).collect();
+                    (k.clone(), v)
+                })
+                .collect(),
         }
     }
 }
@@ -501,6 +514,7 @@ mod tests {
             conditioning: vec![f64::NAN, 0.5],
             primary_error: Some(vec![0.0, f64::NEG_INFINITY]),
             primary_metric: "rotation_error_max".into(),
+            tracks: Default::default(),
         };
         let text = serde_json::to_string(&s).unwrap();
         let back: Series = serde_json::from_str(&text).unwrap();

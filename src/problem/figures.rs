@@ -7,9 +7,10 @@
 //! of that kind.
 //!
 //! The kinds are today's four (work-precision against wall time and RHS evaluations,
-//! convergence over the fixed-step ladder, energy and constraint drift over time, a measure
-//! across the scenes of a case). A new kind (a column over time against the reference, an x-y
-//! curve such as a hysteresis loop) is a new list here and its composer in `src/report/`.
+//! convergence over the fixed-step ladder, quantities over time (energy and constraint drift,
+//! a family's own column against the reference), a measure across the scenes of a case). A
+//! new kind (an x-y curve such as a hysteresis loop) is a new list here and its composer in
+//! `src/report/`.
 //!
 //! # Example
 //!
@@ -107,6 +108,16 @@ pub enum Quantity {
     /// The chart's constraint residual (absent for charts without one); `what` is the
     /// caption's sentence saying what it is for the family's charts.
     Constraint { what: &'static str },
+    /// A family's own quantity from the series' `tracks[column]` on a linear axis, against
+    /// the reference's `tracks[reference]` (a black line); `what` is the caption's sentence,
+    /// `id` the file-name stem, `y_label` the axis label.
+    Track {
+        column: &'static str,
+        reference: &'static str,
+        id: &'static str,
+        what: &'static str,
+        y_label: &'static str,
+    },
 }
 
 /// What an across-scenes plot measures per scene.
@@ -166,4 +177,8 @@ pub struct Figures {
     /// What the line styles mean in the line plots (e.g. "body formulation solid, spatial
     /// dashed"); the dot plots place a variant's formulations side by side instead.
     pub line_styles: &'static str,
+    /// A variant with no completed run is drawn over time by its finest failed run, up to
+    /// the failure (the beam's diverging `modal_linear`); otherwise failed runs are left out
+    /// of the time-series plots (and their series files are not written).
+    pub draw_failed: bool,
 }

@@ -269,6 +269,7 @@ pub fn write_series(root: &Path, s: &Summary, skip: impl Fn(&Record) -> bool) {
             conditioning: vec![1.0; n],
             primary_error: Some(t.iter().map(|x| scale * x / 10.0).collect()),
             primary_metric: PRIMARY.into(),
+            tracks: Default::default(),
             t,
         };
         let id = run_id(

@@ -95,8 +95,11 @@ fn hash(name: &str) -> usize {
     h as usize
 }
 
-/// The colour of an integrator.
+/// The colour of an integrator (ink for a plot's reference line).
 pub fn colour(integrator: &str) -> RGBColor {
+    if integrator == super::timeseries::REFERENCE {
+        return INK;
+    }
     match axis_position(Axis::Integrator, integrator) {
         i if i < INTEGRATOR_COLOURS.len() => INTEGRATOR_COLOURS[i],
         _ => SPARE_COLOURS[hash(integrator) % SPARE_COLOURS.len()],

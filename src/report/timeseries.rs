@@ -1,12 +1,14 @@
-//! Invariants over time, from the per-run series files (values at the scene's `score_every`
+//! Quantities over time, from the per-run series files (values at the scene's `score_every`
 //! times): the relative energy drift `|E(t) - E0| / max(|E0|, energy_scale)` (the same
 //! normalisation as `energy_drift_max`, docs/schemas.md) and the chart's own constraint
 //! residual (`||q|^2 - 1|`, `|R^T R - I|`, the dual quaternion's two; none for minimal charts),
-//! both on a log axis against linear time.
+//! both on a log axis against linear time; and a family's own column (`Series::tracks`, the
+//! beam's tip deflection) on a linear axis against the reference's, drawn as an ink line.
 //!
 //! Which run of a variant: its coarsest *completed* ladder point (largest `dt`, loosest
 //! `tol`), where drift and residual are largest and furthest above round-off; the caption
-//! lists the steps used. A symplectic or energy-momentum method shows a bounded energy error,
+//! lists the steps used. A family that draws failed runs (`Figures::draw_failed`) draws a
+//! variant without a completed run by its finest failed run, up to the failure. A symplectic or energy-momentum method shows a bounded energy error,
 //! a non-symplectic one a secular drift; an additive chart without projection shows its
 //! constraint residual growing. Exact zeros (e.g. the drift at t = 0) cannot be drawn on a log
 //! axis and are left out. A variant with no completed run or no series file has no line and
@@ -15,8 +17,9 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use super::axes::Scale;
 use super::chart::{Legend, Line, Plot};
-use super::data::{self, CaseView, SceneView};
+use super::data::{self, CaseView, SceneView, VariantKey};
 use super::select::{Admits, Panel, panels};
 
 pub use crate::problem::figures::Quantity;
@@ -54,8 +57,18 @@ pub fn plot(
     let mut steps: BTreeMap<String, Vec<String>> = BTreeMap::new();
     let mut missing: Vec<String> = vec![];
     let mut unconstrained: Vec<String> = vec![];
+    let mut failed: Vec<String> = vec![];
+    // The reference of a Track plot: the longest reference track among the drawn series.
+    let mut reference: Vec<(f64, f64)> = vec![];
     for v in sv.variants.iter().filter(|v| sel.admits(v)) {
-        let Some(r) = v.coarsest_ok() else {
+        let drawn = v.coarsest_ok().or_else(|| {
+            cv.family
+                .figures
+                .draw_failed
+                .then(|| v.failed().filter(|r| r.series.is_some()).last())
+                .flatten()
+        });
+        let Some(r) = drawn else {
             missing.push(format!("{} (no completed run)", v.key.label()));
             continue;
         };
@@ -69,6 +82,21 @@ pub fn plot(
                 .map(Some)
                 .collect(),
             Quantity::Constraint { .. } => s.constraint.clone(),
+            Quantity::Track {
+                column,
+                reference: r_col,
+                ..
+            } => {
+                let Some(track) = s.tracks.get(column) else {
+                    missing.push(format!("{} (no {column} in its series)", v.key.label()));
+                    continue;
+                };
+                let refs = pairs(&s.t, s.tracks.get(r_col).map_or(&[][..], |x| &x[..]));
+                if refs.len() > reference.len() {
+                    reference = refs;
+                }
+                track.clone()
+            }
         };
         if matches!(q, Quantity::Constraint { .. }) && ys.iter().all(Option::is_none) {
             if !unconstrained.contains(&v.key.param) {
@@ -76,15 +104,15 @@ pub fn plot(
             }
             continue;
         }
-        let points: Vec<(f64, f64)> =
-            s.t.iter()
-                .zip(ys)
-                .filter_map(|(t, y)| y.map(|y| (*t, y)))
-                .collect();
+        let points = pairs(&s.t, &ys);
         let label = data::step_label(r);
-        let e = steps.entry(label).or_default();
-        if !e.contains(&v.key.integrator) {
-            e.push(v.key.integrator.clone());
+        if r.status != crate::summary::Status::Ok {
+            failed.push(format!("{} at {label}", v.key.label()));
+        } else {
+            let e = steps.entry(label).or_default();
+            if !e.contains(&v.key.integrator) {
+                e.push(v.key.integrator.clone());
+            }
         }
         let n = points.len();
         lines.push(Line {
@@ -103,7 +131,7 @@ pub fn plot(
             "Relative energy drift |E(t) - E0| / max(|E0|, {}) at the score times. ",
             cv.energy_scale.map(data::num).unwrap_or_else(|| "0".into())
         ),
-        Quantity::Constraint { what } => what.to_string(),
+        Quantity::Constraint { what } | Quantity::Track { what, .. } => format!("{what} "),
     };
     caption.push_str(&sel.drawn(cv.family, false));
     caption.push_str(&format!(
@@ -114,6 +142,12 @@ pub fn plot(
             used.join("; ")
         }
     ));
+    if !failed.is_empty() {
+        caption.push_str(&format!(
+            " No completed run, drawn up to the failure at its finest step: {}.",
+            failed.join("; ")
+        ));
+    }
     if lines.is_empty() && missing.is_empty() && !unconstrained.is_empty() {
         return None;
     }
@@ -126,24 +160,65 @@ pub fn plot(
     if !missing.is_empty() {
         caption.push_str(&format!(" No data: {}.", missing.join("; ")));
     }
-    let (id, name, y_label) = match q {
-        Quantity::Energy => ("energy", "energy drift", "|E - E0| / max(|E0|, E_scale)"),
-        Quantity::Constraint { .. } => ("constraint", "constraint residual", "constraint residual"),
+    if let (Quantity::Track { .. }, false) = (q, reference.is_empty() || lines.is_empty()) {
+        let n = reference.len();
+        lines.push(Line {
+            key: VariantKey {
+                param: lines[0].key.param.clone(),
+                integrator: REFERENCE.into(),
+                formulation: lines[0].key.formulation.clone(),
+            },
+            points: reference,
+            label: None,
+            marker_every: n.max(1),
+        });
+    }
+    let (id, name, y_label, y) = match q {
+        Quantity::Energy => (
+            "energy",
+            "energy drift",
+            "|E - E0| / max(|E0|, E_scale)",
+            Scale::Log,
+        ),
+        Quantity::Constraint { .. } => (
+            "constraint",
+            "constraint residual",
+            "constraint residual",
+            Scale::Log,
+        ),
+        Quantity::Track {
+            id,
+            column,
+            y_label,
+            ..
+        } => (id, column, y_label, Scale::Linear),
     };
+    let relative = !matches!(q, Quantity::Track { .. });
     Some(Plot {
         id: format!("{}/{id}_{}", sv.name, sel.id),
         title: format!("{}/{}: {name} over time ({})", cv.name, sv.name, sel.short),
         x_label: "t (s)".into(),
         y_label: y_label.into(),
-        x: super::axes::Scale::Linear,
-        y: super::axes::Scale::Log,
+        x: Scale::Linear,
+        y,
         lines,
         fails: vec![],
         legend: Legend::Factored,
         caption,
         footer: footer.into(),
-        round_off: Some(format!("{name} ({})", sel.short)),
+        round_off: relative.then(|| format!("{name} ({})", sel.short)),
     })
+}
+
+/// The name a Track plot's reference line carries on the integrator axis (drawn in ink).
+pub const REFERENCE: &str = "reference";
+
+/// `(t, y)` for every `y` present.
+fn pairs(t: &[f64], ys: &[Option<f64>]) -> Vec<(f64, f64)> {
+    t.iter()
+        .zip(ys)
+        .filter_map(|(t, y)| y.map(|y| (*t, y)))
+        .collect()
 }
 
 #[cfg(test)]

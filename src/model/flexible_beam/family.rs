@@ -58,11 +58,23 @@ const FIGURES: Figures = Figures {
             },
             BY_FORMULATION,
         ),
+        (
+            Quantity::Track {
+                column: "tip_deflection",
+                reference: "tip_deflection_reference",
+                id: "tip",
+                what: "Tip deflection v_tip (m, in the rotating frame) at the score times, \
+                    against the fe_exact reference (black).",
+                y_label: "v_tip (m)",
+            },
+            BY_FORMULATION,
+        ),
     ],
     across_scenes: &[(BY_FORMULATION, Measure::Primary)],
     chart_group: None,
     param_groups: &[],
     line_styles: "every line solid (one formulation per panel)",
+    draw_failed: true,
 };
 
 const fn metric(name: &'static str, unit: &'static str, reference_error: bool) -> Metric {

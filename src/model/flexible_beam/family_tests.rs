@@ -144,3 +144,79 @@ fn free_hub_momentum_is_a_linear_invariant() {
         }
     }
 }
+
+/// The report's tip-over-time figure has what it draws: through the real command line
+/// (`run --quick` on `spinup_w4`, then `report`), the completed run's series holds the tip
+/// deflection and the reference's at every score time (the reference's own values), the
+/// diverged `modal_linear` run keeps its series up to the failure (the family draws failed
+/// runs), and the page has the `modal_linear` panel with that run named in its caption.
+#[test]
+fn tip_figure_draws_every_formulation_against_the_reference() {
+    use clap::Parser;
+    let out = std::env::temp_dir().join(format!("mbdbench-beam-tip-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let o = out.display().to_string();
+    let cli = |args: &[&str]| {
+        let mut all = vec!["mbdbench"];
+        all.extend_from_slice(args);
+        crate::cli::execute(crate::cli::Cli::parse_from(all))
+    };
+    let run = [
+        "run",
+        "--quick",
+        "--case",
+        "flexible_beam",
+        "--scene",
+        "spinup_w4",
+        "--integrator",
+        "newmark",
+        "--formulation",
+        "modal_linear",
+        "--formulation",
+        "modal_stiffened",
+        "--out",
+        &o,
+    ];
+    assert_eq!(cli(&run), 0, "a typed failure is a result, not an error");
+    let summary: crate::summary::Summary =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+            .unwrap();
+    let series = |form: &str| {
+        let r = summary
+            .records
+            .iter()
+            .find(|r| r.key.formulation == form)
+            .unwrap();
+        let rel = r.series.clone().expect("a drawn run keeps its series");
+        let text = std::fs::read_to_string(out.join(rel)).unwrap();
+        (r.status, serde_json::from_str::<crate::summary::Series>(&text).unwrap())
+    };
+    let (status, s) = series("modal_stiffened");
+    assert_eq!(status, crate::summary::Status::Ok);
+    let tip = &s.tracks["tip_deflection"];
+    let reference = &s.tracks["tip_deflection_reference"];
+    assert_eq!((tip.len(), reference.len()), (s.t.len(), s.t.len()));
+    assert_eq!(s.t.len(), 201);
+    let peak = reference.iter().flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
+    assert!((peak - 0.4001).abs() < 1e-3, "reference peak {peak}");
+    let worst = tip
+        .iter()
+        .zip(reference)
+        .map(|(a, b)| (a.unwrap() - b.unwrap()).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 0.02 * peak, "tip vs reference {worst}");
+    let (status, s) = series("modal_linear");
+    assert_eq!(status, crate::summary::Status::Failed);
+    assert!(s.t.len() > 100 && s.t.len() < 201, "{}", s.t.len());
+    let last = s.tracks["tip_deflection"].last().unwrap().unwrap();
+    assert!(last.abs() > 1.0, "diverging: {last}");
+    let summary_path = out.join("summary.json").display().to_string();
+    assert_eq!(cli(&["report", "--summary", &summary_path]), 0);
+    let page = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(page.contains("tip_deflection over time"), "no tip figure");
+    assert!(
+        page.contains("drawn up to the failure at its finest step: none / newmark / modal_linear"),
+        "the failed run is not named"
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}

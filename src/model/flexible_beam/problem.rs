@@ -216,6 +216,26 @@ impl BeamProblem {
                 }
             }
         }
+        let mut tracks = std::collections::BTreeMap::new();
+        tracks.insert(
+            "tip_deflection".to_string(),
+            scored.iter().map(|(_, o)| Some(o.tip_deflection)).collect(),
+        );
+        if let Some((r, _)) = &self.reference {
+            // The reference's score grid is the run's from t = 0 (a failed run's is a prefix).
+            let on_grid = |i: usize, t: f64| {
+                r.t.get(i)
+                    .is_some_and(|x| (x - t).abs() <= 1e-9 * t.abs().max(1.0))
+            };
+            tracks.insert(
+                "tip_deflection_reference".to_string(),
+                scored
+                    .iter()
+                    .enumerate()
+                    .map(|(i, (t, _))| on_grid(i, *t).then(|| r.tip_deflection[i]))
+                    .collect(),
+            );
+        }
         let series = Series {
             t: scored.iter().map(|x| x.0).collect(),
             energy: bal_scored.unwrap_or_else(|| vec![f64::NAN; scored.len()]),
@@ -223,6 +243,7 @@ impl BeamProblem {
             conditioning: out.scored().map(|x| x.conditioning).collect(),
             primary_error,
             primary_metric: self.primary_metric.clone(),
+            tracks,
         };
         (s, series)
     }

@@ -105,4 +105,5 @@ pub const FIGURES: Figures = Figures {
         },
     ],
     line_styles: "body formulation solid, spatial dashed",
+    draw_failed: false,
 };

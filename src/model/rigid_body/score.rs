@@ -44,6 +44,7 @@ pub fn score(out: &RunOutput, cx: &ScoreContext) -> (Scores, Series) {
         conditioning: scored.iter().map(|s| s.conditioning).collect(),
         primary_error,
         primary_metric: cx.primary_metric.to_string(),
+        tracks: Default::default(),
     };
     (s, series)
 }

@@ -34,6 +34,7 @@ const FIGURES: Figures = Figures {
     chart_group: None,
     param_groups: &[],
     line_styles: "chain_nodal solid, chain_modal dashed",
+    draw_failed: false,
 };
 
 /// The spring-chain family.

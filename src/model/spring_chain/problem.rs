@@ -406,6 +406,7 @@ impl ChainProblem {
             conditioning: scored.iter().map(|x| x.conditioning).collect(),
             primary_error,
             primary_metric: self.primary_metric.clone(),
+            tracks: Default::default(),
         };
         (s, series)
     }
