@@ -11,7 +11,10 @@ use super::*;
 pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> {
     let t0 = std::time::Instant::now();
     let args = RunArgs::default();
-    let code = cmd_run(common, &args)?;
+    // The folder the run wrote: `reports/latest`, or its sibling when that holds a run this
+    // one may not replace (a quick-tier run: `run.rs`, `where_to_write`); every later step
+    // reads and writes there, so the stability study, report and gate describe this run.
+    let (code, out) = cmd_run_into(common, &args)?;
     if code != EXIT_OK {
         return Ok(code);
     }
@@ -21,14 +24,14 @@ pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> 
             filters: Filters::default(),
             quick: !full_stability,
             jobs: None,
-            out: args.out.clone(),
+            out: out.clone(),
             verbose: false,
         },
     )?;
     if code != EXIT_OK {
         return Ok(code);
     }
-    let summary = args.out.join("summary.json");
+    let summary = out.join("summary.json");
     let code = cmd_report(common, &summary, None)?;
     if code != EXIT_OK {
         return Ok(code);
@@ -62,7 +65,7 @@ pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> 
     crate::say!(
         "main job: {:.0} s; report {}",
         t0.elapsed().as_secs_f64(),
-        args.out.join("index.html").display()
+        out.join("index.html").display()
     );
     Ok(code)
 }

@@ -12,7 +12,7 @@ pub mod names;
 mod run;
 mod trajectory;
 use list::cmd_list;
-use run::cmd_run;
+use run::{cmd_run, cmd_run_into};
 use trajectory::cmd_trajectory;
 
 /// mbdbench: rotation parameterizations x time integrators on canonical multibody problems.

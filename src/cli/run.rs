@@ -95,6 +95,12 @@ fn describe(s: &Selection) -> String {
 }
 
 pub(super) fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
+    cmd_run_into(common, a).map(|(code, _)| code)
+}
+
+/// `cmd_run`, also returning the folder it wrote (`--out`, or the sibling of
+/// `where_to_write`), which the main job's later steps must read.
+pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf), String> {
     let cases = load_cases(common)?;
     if let Some(t) = a.t_end
         && !(t.is_finite() && t > 0.0)
@@ -183,5 +189,5 @@ pub(super) fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
     if had_report {
         cmd_report(common, &out.join("summary.json"), None)?;
     }
-    Ok(EXIT_OK)
+    Ok((EXIT_OK, out))
 }
