@@ -109,15 +109,30 @@ pub enum Quantity {
     /// caption's sentence saying what it is for the family's charts.
     Constraint { what: &'static str },
     /// A family's own quantity from the series' `tracks[column]` on a linear axis, against
-    /// the reference's `tracks[reference]` (a black line); `what` is the caption's sentence,
-    /// `id` the file-name stem, `y_label` the axis label.
+    /// the reference's `tracks[reference]` (an ink line): one panel per group of
+    /// formulations, one line per formulation (its first variant in the family's order, on
+    /// an integrator no other line of the panel uses when it can, at that variant's coarsest
+    /// completed ladder point); `what` is the caption's sentence, `id` the file-name stem,
+    /// `y_label` the axis label. The selection it is declared with only says which variants
+    /// keep their series.
     Track {
         column: &'static str,
         reference: &'static str,
         id: &'static str,
         what: &'static str,
         y_label: &'static str,
+        groups: &'static [FormulationGroup],
     },
+}
+
+/// Formulations drawn in one panel of a `Quantity::Track` plot.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FormulationGroup {
+    /// A short id for file names.
+    pub id: &'static str,
+    /// A title fragment.
+    pub label: &'static str,
+    pub formulations: &'static [&'static str],
 }
 
 /// What an across-scenes plot measures per scene.

@@ -21,20 +21,33 @@ use super::axes::Scale;
 use super::chart::{Legend, Line, Plot};
 use super::data::{self, CaseView, SceneView, VariantKey};
 use super::select::{Admits, Panel, panels};
+use crate::problem::figures::FormulationGroup;
+use crate::summary::{Record, Status};
 
 pub use crate::problem::figures::Quantity;
 
 /// The time-series plots of a scene: each quantity and panel of each selection the family
-/// declares (panels that draw no variant of the scene are left out).
+/// declares (panels that draw no variant of the scene are left out), and each group of a
+/// `Quantity::Track`.
 pub fn plots(cv: &CaseView, sv: &SceneView, series_root: &Path, footer: &str) -> Vec<Plot> {
-    cv.family
-        .figures
-        .timeseries
-        .iter()
-        .flat_map(|&(q, sel)| panels(sel, cv.family).into_iter().map(move |p| (q, p)))
-        .filter(|(_, p)| sv.variants.iter().any(|v| p.admits(v)))
-        .filter_map(|(q, p)| plot(cv, sv, series_root, q, &p, footer))
-        .collect()
+    let mut out = vec![];
+    for &(q, sel) in cv.family.figures.timeseries {
+        if let Quantity::Track { groups, .. } = q {
+            out.extend(
+                groups
+                    .iter()
+                    .filter_map(|g| track_plot(cv, sv, series_root, q, g, footer)),
+            );
+            continue;
+        }
+        out.extend(
+            panels(sel, cv.family)
+                .into_iter()
+                .filter(|p| sv.variants.iter().any(|v| p.admits(v)))
+                .filter_map(|p| plot(cv, sv, series_root, q, &p, footer)),
+        );
+    }
+    out
 }
 
 /// The relative energy drift of a series (`metrics::energy_drift::relative`; a case the
@@ -43,8 +56,21 @@ pub fn energy_drift(energy: &[f64], energy_scale: Option<f64>) -> Vec<f64> {
     crate::metrics::energy_drift::relative(energy, energy_scale.unwrap_or(0.0)).collect()
 }
 
-/// One time-series plot; None for a constraint plot whose every variant is on a chart
-/// without a residual (a panel of minimal charts).
+/// The run a time-series plot draws for a variant: its coarsest completed ladder point, or,
+/// for a family that draws failed runs, its finest failed run that kept a series.
+fn drawn<'a>(cv: &CaseView, v: &data::VariantRuns<'a>) -> Option<&'a Record> {
+    v.coarsest_ok().or_else(|| {
+        cv.family
+            .figures
+            .draw_failed
+            .then(|| v.failed().filter(|r| r.series.is_some()).last())
+            .flatten()
+    })
+}
+
+/// One energy or constraint plot; None for a constraint plot whose every variant is on a
+/// chart without a residual (a panel of minimal charts), and for a `Track` quantity (drawn by
+/// `track_plot`).
 pub fn plot(
     cv: &CaseView,
     sv: &SceneView,
@@ -53,22 +79,18 @@ pub fn plot(
     sel: &Panel,
     footer: &str,
 ) -> Option<Plot> {
+    let (id, name, y_label) = match q {
+        Quantity::Energy => ("energy", "energy drift", "|E - E0| / max(|E0|, E_scale)"),
+        Quantity::Constraint { .. } => ("constraint", "constraint residual", "constraint residual"),
+        Quantity::Track { .. } => return None,
+    };
     let mut lines = vec![];
     let mut steps: BTreeMap<String, Vec<String>> = BTreeMap::new();
     let mut missing: Vec<String> = vec![];
     let mut unconstrained: Vec<String> = vec![];
     let mut failed: Vec<String> = vec![];
-    // The reference of a Track plot: the longest reference track among the drawn series.
-    let mut reference: Vec<(f64, f64)> = vec![];
     for v in sv.variants.iter().filter(|v| sel.admits(v)) {
-        let drawn = v.coarsest_ok().or_else(|| {
-            cv.family
-                .figures
-                .draw_failed
-                .then(|| v.failed().filter(|r| r.series.is_some()).last())
-                .flatten()
-        });
-        let Some(r) = drawn else {
+        let Some(r) = drawn(cv, v) else {
             missing.push(format!("{} (no completed run)", v.key.label()));
             continue;
         };
@@ -81,22 +103,7 @@ pub fn plot(
                 .into_iter()
                 .map(Some)
                 .collect(),
-            Quantity::Constraint { .. } => s.constraint.clone(),
-            Quantity::Track {
-                column,
-                reference: r_col,
-                ..
-            } => {
-                let Some(track) = s.tracks.get(column) else {
-                    missing.push(format!("{} (no {column} in its series)", v.key.label()));
-                    continue;
-                };
-                let refs = pairs(&s.t, s.tracks.get(r_col).map_or(&[][..], |x| &x[..]));
-                if refs.len() > reference.len() {
-                    reference = refs;
-                }
-                track.clone()
-            }
+            _ => s.constraint.clone(),
         };
         if matches!(q, Quantity::Constraint { .. }) && ys.iter().all(Option::is_none) {
             if !unconstrained.contains(&v.key.param) {
@@ -106,7 +113,7 @@ pub fn plot(
         }
         let points = pairs(&s.t, &ys);
         let label = data::step_label(r);
-        if r.status != crate::summary::Status::Ok {
+        if r.status != Status::Ok {
             failed.push(format!("{} at {label}", v.key.label()));
         } else {
             let e = steps.entry(label).or_default();
@@ -127,11 +134,11 @@ pub fn plot(
         .map(|(step, integ)| format!("{step} ({})", integ.join(", ")))
         .collect();
     let mut caption = match q {
-        Quantity::Energy => format!(
+        Quantity::Constraint { what } => what.to_string(),
+        _ => format!(
             "Relative energy drift |E(t) - E0| / max(|E0|, {}) at the score times. ",
             cv.energy_scale.map(data::num).unwrap_or_else(|| "0".into())
         ),
-        Quantity::Constraint { what } | Quantity::Track { what, .. } => format!("{what} "),
     };
     caption.push_str(&sel.drawn(cv.family, false));
     caption.push_str(&format!(
@@ -160,7 +167,101 @@ pub fn plot(
     if !missing.is_empty() {
         caption.push_str(&format!(" No data: {}.", missing.join("; ")));
     }
-    if let (Quantity::Track { .. }, false) = (q, reference.is_empty() || lines.is_empty()) {
+    Some(Plot {
+        id: format!("{}/{id}_{}", sv.name, sel.id),
+        title: format!("{}/{}: {name} over time ({})", cv.name, sv.name, sel.short),
+        x_label: "t (s)".into(),
+        y_label: y_label.into(),
+        x: Scale::Linear,
+        y: Scale::Log,
+        lines,
+        fails: vec![],
+        legend: Legend::Factored,
+        caption,
+        footer: footer.into(),
+        round_off: Some(format!("{name} ({})", sel.short)),
+    })
+}
+
+/// One panel of a `Quantity::Track` plot: a line per formulation of `group` (see
+/// `Quantity::Track`) and the reference; None when no formulation of the group ran here.
+fn track_plot(
+    cv: &CaseView,
+    sv: &SceneView,
+    series_root: &Path,
+    q: Quantity,
+    group: &FormulationGroup,
+    footer: &str,
+) -> Option<Plot> {
+    let Quantity::Track {
+        column,
+        reference: r_col,
+        id,
+        what,
+        y_label,
+        ..
+    } = q
+    else {
+        return None;
+    };
+    let ran = |f: &str| sv.variants.iter().any(|v| v.key.formulation == f);
+    if !group.formulations.iter().any(|f| ran(f)) {
+        return None;
+    }
+    let mut lines: Vec<Line> = vec![];
+    let mut reference: Vec<(f64, f64)> = vec![];
+    let mut missing: Vec<String> = vec![];
+    let mut used: Vec<String> = vec![];
+    for f in group.formulations.iter().filter(|f| ran(f)) {
+        let candidates: Vec<(&data::VariantRuns, &Record)> = sv
+            .variants
+            .iter()
+            .filter(|v| v.key.formulation == *f)
+            .filter_map(|v| Some((v, drawn(cv, v)?)))
+            .collect();
+        // A completed run first, on an integrator no line of the panel uses yet.
+        let fresh =
+            |v: &data::VariantRuns| !lines.iter().any(|l| l.key.integrator == v.key.integrator);
+        let pick = candidates
+            .iter()
+            .find(|(v, r)| r.status == Status::Ok && fresh(v))
+            .or_else(|| candidates.iter().find(|(_, r)| r.status == Status::Ok))
+            .or_else(|| candidates.first());
+        let Some(&(v, r)) = pick else {
+            missing.push(format!("{f} (no drawn run)"));
+            continue;
+        };
+        let Some(s) = data::load_series(series_root, r) else {
+            missing.push(format!("{} (no series file)", v.key.label()));
+            continue;
+        };
+        let Some(track) = s.tracks.get(column) else {
+            missing.push(format!("{} (no {column} in its series)", v.key.label()));
+            continue;
+        };
+        let refs = pairs(&s.t, s.tracks.get(r_col).map_or(&[][..], |x| &x[..]));
+        if refs.len() > reference.len() {
+            reference = refs;
+        }
+        let how = match &r.failure {
+            Some(fail) if r.status != Status::Ok => format!(
+                "{}, failed at t = {}",
+                data::step_label(r),
+                data::time(fail.t)
+            ),
+            _ => data::step_label(r),
+        };
+        used.push(format!("{f}: {} at {how}", v.key.integrator));
+        let points = pairs(&s.t, track);
+        let n = points.len();
+        lines.push(Line {
+            key: v.key.clone(),
+            points,
+            label: Some(format!("{f} ({}, {how})", v.key.integrator)),
+            marker_every: (n / 8).max(1),
+        });
+    }
+    if !reference.is_empty() && !lines.is_empty() {
         let n = reference.len();
         lines.push(Line {
             key: VariantKey {
@@ -169,44 +270,39 @@ pub fn plot(
                 formulation: lines[0].key.formulation.clone(),
             },
             points: reference,
-            label: None,
+            label: Some("reference".into()),
             marker_every: n.max(1),
         });
     }
-    let (id, name, y_label, y) = match q {
-        Quantity::Energy => (
-            "energy",
-            "energy drift",
-            "|E - E0| / max(|E0|, E_scale)",
-            Scale::Log,
-        ),
-        Quantity::Constraint { .. } => (
-            "constraint",
-            "constraint residual",
-            "constraint residual",
-            Scale::Log,
-        ),
-        Quantity::Track {
-            id,
-            column,
-            y_label,
-            ..
-        } => (id, column, y_label, Scale::Linear),
-    };
-    let relative = !matches!(q, Quantity::Track { .. });
+    let mut caption = format!(
+        "{what} One line per formulation, on the first of its integrators (a different one for \
+         each line where possible) at its coarsest completed ladder point; a formulation without \
+         a completed run is drawn up to its failure: {}.",
+        if used.is_empty() {
+            "none".to_string()
+        } else {
+            used.join("; ")
+        }
+    );
+    if !missing.is_empty() {
+        caption.push_str(&format!(" No data: {}.", missing.join("; ")));
+    }
     Some(Plot {
-        id: format!("{}/{id}_{}", sv.name, sel.id),
-        title: format!("{}/{}: {name} over time ({})", cv.name, sv.name, sel.short),
+        id: format!("{}/{id}_{}", sv.name, group.id),
+        title: format!(
+            "{}/{}: {column} over time ({})",
+            cv.name, sv.name, group.label
+        ),
         x_label: "t (s)".into(),
         y_label: y_label.into(),
         x: Scale::Linear,
-        y,
+        y: Scale::Linear,
         lines,
         fails: vec![],
-        legend: Legend::Factored,
+        legend: Legend::PerLine,
         caption,
         footer: footer.into(),
-        round_off: relative.then(|| format!("{name} ({})", sel.short)),
+        round_off: None,
     })
 }
 

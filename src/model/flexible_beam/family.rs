@@ -10,7 +10,9 @@
 use super::problem::{BeamProblem, Setup};
 use crate::case::{Case, CaseError, Scene};
 use crate::integrate::MethodInfo;
-use crate::problem::figures::{Admit, Figures, Measure, Quantity, Selection, Split};
+use crate::problem::figures::{
+    Admit, Figures, FormulationGroup, Measure, Quantity, Selection, Split,
+};
 use crate::problem::{Axes, Axis, Column, Family, Metric, Problem, Stepping, Variant};
 use crate::run::{Observe, RunOutput};
 use crate::structural::gen_alpha::GenAlpha;
@@ -66,6 +68,30 @@ const FIGURES: Figures = Figures {
                 what: "Tip deflection v_tip (m, in the rotating frame) at the score times, \
                     against the fe_exact reference (black).",
                 y_label: "v_tip (m)",
+                groups: &[
+                    FormulationGroup {
+                        id: "stiffened",
+                        label: "FE and stiffened modes",
+                        formulations: &["fe_exact", "modal_stiffened"],
+                    },
+                    // Alone: its divergence (|v_tip| up to L) would flatten the others.
+                    FormulationGroup {
+                        id: "linear",
+                        label: "linear modes",
+                        formulations: &["modal_linear"],
+                    },
+                    FormulationGroup {
+                        id: "aigc",
+                        label: "AIGC",
+                        formulations: &[
+                            "aigc_baumgarte",
+                            "aigc_projection",
+                            "aigc_index3",
+                            "aigc_baumgarte_soft",
+                            "aigc_baumgarte_stiff",
+                        ],
+                    },
+                ],
             },
             BY_FORMULATION,
         ),
