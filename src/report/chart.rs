@@ -273,7 +273,9 @@ fn draw(
     }
     // plotters writes a `<line>` per grid line and tick: merged into paths, about half the
     // bytes of a plot (`svg_compact`).
-    Ok(super::svg_compact::merge_lines(&buf))
+    Ok(super::svg_compact::trim_defaults(
+        &super::svg_compact::merge_lines(&buf),
+    ))
 }
 
 /// A sans-serif font of `px` pixels in the SVG (plotters writes `font-size` = size / 1.24).
@@ -284,7 +286,10 @@ fn font(px: f64) -> FontDesc<'static> {
 /// An SVG polyline through pixel points: solid, or dashed with `stroke-dasharray` (one
 /// element however long the line; plotters' dashed series writes one element per dash).
 fn polyline_svg(pts: &[(i32, i32)], colour: RGBColor, width: u32, dashed: bool) -> String {
-    let coords: Vec<String> = pts.iter().map(|(a, b)| format!("{a},{b}")).collect();
+    let coords: Vec<String> = super::svg_compact::simplify_polyline(pts)
+        .iter()
+        .map(|(a, b)| format!("{a},{b}"))
+        .collect();
     format!(
         "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"{width}\" \
          stroke-linejoin=\"round\"{} points=\"{}\"/>\n",
