@@ -24,11 +24,20 @@ pub struct Robust {
     pub formulation: String,
     /// The largest stable step (or loosest stable tolerance); None: nothing passed.
     pub stable: Option<Setting>,
-    /// The largest accurate step (or loosest accurate tolerance); None: nothing passed.
+    /// The largest accurate step (or loosest accurate tolerance); None: nothing passed, or
+    /// not searched (`accuracy_searched`).
     pub accurate: Option<Setting>,
+    /// False for a search that has no accurate step (the seam's step search: the beam has
+    /// no reference beyond its scenes' horizon); written only then.
+    #[serde(skip_serializing_if = "is_true")]
+    pub accuracy_searched: bool,
     /// What stops the stable step from growing (the failure kind of the next larger try).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub limited_by: Option<String>,
+}
+
+fn is_true(b: &bool) -> bool {
+    *b
 }
 
 fn value(r: &Record, metric: &str) -> Option<f64> {
@@ -80,6 +89,11 @@ pub fn robustness(case: &str, stability: &Summary) -> Vec<Robust> {
                 formulation: r.key.formulation.clone(),
                 stable,
                 accurate,
+                accuracy_searched: r.metrics.contains_key(if adaptive {
+                    "largest_accurate_tol"
+                } else {
+                    "largest_accurate_dt"
+                }),
                 limited_by: limit(r, stable_metric),
             },
         ));
@@ -144,5 +158,33 @@ mod tests {
         assert_eq!(r[0].stable, Some(Setting::Dt(0.46)));
         assert_eq!(r[0].limited_by.as_deref(), Some("newton_failure"));
         assert_eq!(r[2].accurate, None);
+        assert!(r.iter().all(|x| x.accuracy_searched));
+    }
+
+    /// A search without an accurate step (the seam's) says so, in the entry and in its JSON;
+    /// a searched one writes nothing extra.
+    #[test]
+    fn unsearched_accuracy_is_said() {
+        let mut seam = search("newmark", Some(0.05), None);
+        seam.metrics.remove("largest_accurate_dt");
+        let s = Summary {
+            schema: 1,
+            git_commit: "-".into(),
+            created_utc: "-".into(),
+            env: crate::summary::Env::current(1, None),
+            records: vec![seam, search("rk4", Some(0.19), Some(0.023))],
+            fits: vec![],
+            selection: None,
+        };
+        let r = robustness("c", &s);
+        let seam = r.iter().find(|x| x.integrator == "newmark").unwrap();
+        assert!(!seam.accuracy_searched && seam.accurate.is_none());
+        let json = serde_json::to_string(&r).unwrap();
+        assert_eq!(
+            json.matches("\"accuracy_searched\":false").count(),
+            1,
+            "{json}"
+        );
+        assert!(!json.contains("\"accuracy_searched\":true"), "{json}");
     }
 }

@@ -103,7 +103,11 @@ pub fn render(a: &Advice) -> String {
                     r.integrator,
                     r.formulation,
                     r.scene,
-                    step(&r.accurate),
+                    if r.accuracy_searched {
+                        step(&r.accurate)
+                    } else {
+                        "not searched".into()
+                    },
                     step(&r.stable),
                     r.limited_by
                         .as_ref()
