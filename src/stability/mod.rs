@@ -73,19 +73,18 @@ pub const QUICK_INTEGRATORS: &[&str] = &["euler", "rk4", "simo_wong"];
 pub const SEAM_QUICK_INTEGRATORS: &[&str] =
     &["rk4", "newmark", "implicit_midpoint", "gen_alpha_i3"];
 
-/// `filter` narrowed to the seam search's quick-tier integrators.
-pub fn seam_quick_filter(filter: &crate::suite::VariantFilter) -> crate::suite::VariantFilter {
+/// `filter` narrowed to the seam search's quick-tier integrators; None when the user's
+/// integrators and these do not meet (nothing to search).
+pub fn seam_quick_filter(
+    filter: &crate::suite::VariantFilter,
+) -> Option<crate::suite::VariantFilter> {
     let mut f = filter.clone();
     f.integrator = SEAM_QUICK_INTEGRATORS
         .iter()
         .filter(|x| filter.integrator.is_empty() || filter.integrator.iter().any(|u| u == *x))
         .map(|x| x.to_string())
         .collect();
-    if f.integrator.is_empty() {
-        // The user's integrators and the quick ones do not meet: nothing to search.
-        f.integrator = vec![String::new()];
-    }
-    f
+    (!f.integrator.is_empty()).then_some(f)
 }
 
 /// `filter` narrowed to the quick tier's variants.
@@ -152,7 +151,6 @@ pub fn step_search(
     opts: &StudyOptions,
     label: &str,
 ) -> Result<Part, String> {
-    use rayon::prelude::*;
     let references: Vec<search::OnTheFly> = scenes.iter().map(|_| Default::default()).collect();
     let mut jobs = vec![];
     for (i, s) in scenes.iter().enumerate() {
@@ -168,20 +166,39 @@ pub fn step_search(
             }
         }
     }
+    let records = timed_searches(&jobs, opts, label, |j| {
+        let s = &scenes[j.scene];
+        let (stable, accurate) = search::search(j.variant, s, &references[j.scene]);
+        search::record(j.variant, s, &stable, &accurate)
+    })?;
+    Ok(Part {
+        records,
+        ..Default::default()
+    })
+}
+
+/// Runs `search` on every job in parallel over `opts.jobs` threads, one job at a time per
+/// thread; each record gets the search's wall time, and progress goes to stderr every tenth
+/// of the jobs (`label`). Records in job order.
+pub(crate) fn timed_searches<J: Sync>(
+    jobs: &[J],
+    opts: &StudyOptions,
+    label: &str,
+    search: impl Fn(&J) -> Record + Sync,
+) -> Result<Vec<Record>, String> {
+    use rayon::prelude::*;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.jobs.max(1))
         .build()
         .map_err(|e| e.to_string())?;
     let total = jobs.len();
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let records: Vec<Record> = pool.install(|| {
+    Ok(pool.install(|| {
         jobs.par_iter()
             .with_max_len(1)
             .map(|j| {
-                let s = &scenes[j.scene];
                 let t0 = std::time::Instant::now();
-                let (stable, accurate) = search::search(j.variant, s, &references[j.scene]);
-                let mut r = search::record(j.variant, s, &stable, &accurate);
+                let mut r = search(j);
                 let w = t0.elapsed().as_secs_f64();
                 r.wall_s = Some(crate::summary::Wall { min: w, median: w });
                 let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
@@ -191,11 +208,7 @@ pub fn step_search(
                 r
             })
             .collect()
-    });
-    Ok(Part {
-        records,
-        ..Default::default()
-    })
+    }))
 }
 
 /// The whole study: the step search on the case scenes, the stiffness ladder and the long
@@ -223,9 +236,12 @@ pub fn run_study(
     let seam_filter = if opts.quick {
         seam_quick_filter(filter)
     } else {
-        filter.clone()
+        Some(filter.clone())
     };
-    let mut all = seam_search::study(cases, case_filter, scene_filter, &seam_filter, opts)?;
+    let mut all = match seam_filter {
+        Some(f) => seam_search::study(cases, case_filter, scene_filter, &f, opts)?,
+        None => Part::default(),
+    };
     // The parts below are the rigid body's (each file's FAMILIES).
     let Some((cases, case_filter, scene_filter)) =
         part_cases(cases, search::FAMILIES, case_filter, scene_filter)

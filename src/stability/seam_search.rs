@@ -178,7 +178,6 @@ pub fn study(
     filter: &crate::suite::VariantFilter,
     opts: &StudyOptions,
 ) -> Result<Part, String> {
-    use rayon::prelude::*;
     let scenes = scenes(cases, case_filter, scene_filter, opts.quick)?;
     let mut jobs: Vec<(usize, &'static Variant)> = vec![];
     for (i, s) in scenes.iter().enumerate() {
@@ -191,29 +190,10 @@ pub fn study(
             }
         }
     }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.jobs.max(1))
-        .build()
-        .map_err(|e| e.to_string())?;
-    let total = jobs.len();
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    let records: Vec<Record> = pool.install(|| {
-        jobs.par_iter()
-            .with_max_len(1)
-            .map(|&(i, v)| {
-                let s = &scenes[i];
-                let t0 = std::time::Instant::now();
-                let mut r = s.record(v, &s.search(v));
-                let w = t0.elapsed().as_secs_f64();
-                r.wall_s = Some(crate::summary::Wall { min: w, median: w });
-                let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-                if opts.progress && (k.is_multiple_of((total / 10).max(1)) || k == total) {
-                    eprintln!("  seam steps {k}/{total} searches");
-                }
-                r
-            })
-            .collect()
-    });
+    let records = super::timed_searches(&jobs, opts, "seam steps", |&(i, v)| {
+        let s = &scenes[i];
+        s.record(v, &s.search(v))
+    })?;
     Ok(Part {
         records,
         ..Default::default()

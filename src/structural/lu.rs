@@ -163,17 +163,13 @@ impl Lu {
             for i in k + 1..n {
                 a[(i, k)] *= inv;
             }
-            // Trailing update, column by column on the column-major buffer (nalgebra stores
-            // columns contiguously): column k split off so that the inner loop runs on two
-            // slices without index checks, in the same order as the indexed form.
-            let data = a.as_mut_slice();
-            let (left, right) = data.split_at_mut((k + 1) * n);
-            let lk = &left[k * n + k + 1..(k + 1) * n];
-            for col in right.chunks_exact_mut(n) {
-                let akj = col[k];
+            // Trailing update, column by column (nalgebra stores columns contiguously).
+            for j in k + 1..n {
+                let akj = a[(k, j)];
                 if akj != 0.0 {
-                    for (x, &lik) in col[k + 1..].iter_mut().zip(lk) {
-                        *x -= lik * akj;
+                    for i in k + 1..n {
+                        let lik = a[(i, k)];
+                        a[(i, j)] -= lik * akj;
                     }
                 }
             }
@@ -199,31 +195,28 @@ impl Lu {
             "right-hand side of length {} for n = {n}",
             b.len()
         );
-        let a = self.a.as_slice();
-        let b = b.as_mut_slice();
+        let a = &self.a;
         for (k, &p) in self.ipiv.iter().enumerate() {
             if p != k {
-                b.swap(k, p);
+                b.swap_rows(k, p);
             }
         }
-        // L y = P b (unit diagonal), column-oriented on the column-major buffer.
+        // L y = P b (unit diagonal), column-oriented.
         for k in 0..n {
-            let (head, tail) = b.split_at_mut(k + 1);
-            let bk = head[k];
+            let bk = b[k];
             if bk != 0.0 {
-                for (x, &lik) in tail.iter_mut().zip(&a[k * n + k + 1..(k + 1) * n]) {
-                    *x -= lik * bk;
+                for i in k + 1..n {
+                    b[i] -= a[(i, k)] * bk;
                 }
             }
         }
         // U x = y, column-oriented.
         for k in (0..n).rev() {
-            let (head, tail) = b.split_at_mut(k);
-            tail[0] /= a[k * n + k];
-            let bk = tail[0];
+            b[k] /= a[(k, k)];
+            let bk = b[k];
             if bk != 0.0 {
-                for (x, &uik) in head.iter_mut().zip(&a[k * n..k * n + k]) {
-                    *x -= uik * bk;
+                for i in 0..k {
+                    b[i] -= a[(i, k)] * bk;
                 }
             }
         }

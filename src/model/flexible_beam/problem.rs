@@ -383,7 +383,8 @@ impl Problem for BeamProblem {
     }
     /// The clamped-free beam's first bending period at rest, `2 pi / ((beta_1 L)^2
     /// sqrt(EI / (rho A L^4)))` with `beta_1 L = 1.8751` (3.80 rad/s, 1.65 s on the spin-ups;
-    /// 0.0440 rad/s, 143 s on flexsat, whose free hub raises it a little).
+    /// 0.0440 rad/s, 143 s on flexsat, where it is the clamped beam's period, not the free
+    /// hub's: a time scale for the search's horizon).
     fn first_period(&self) -> Option<f64> {
         let b = &self.setup.scene.beam;
         let z = super::shapes::clamped_free_root(1);
