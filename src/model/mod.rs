@@ -2,6 +2,8 @@
 //! the `families!` list below, which declares its module and its entry in the family table
 //! (`problem::FAMILIES`, in report order); `linear_modes` and `torque_free` serve the rigid
 //! body (its stability study and exact references).
+// The fiber column's pieces, built and tested before it joins the family table below.
+pub mod fiber_column;
 pub mod linear_modes;
 pub mod torque_free;
 
