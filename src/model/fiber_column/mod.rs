@@ -4,8 +4,11 @@
 //! displacement control and under a ground-acceleration pulse.
 //!
 //! Files: `material/` the uniaxial fiber materials (OpenSees' `Concrete01`, `Concrete02`,
-//! `Steel01`, `Steel02` and a linear elastic one) with trial, committed and reverted state.
+//! `Steel01`, `Steel02` and a linear elastic one) with trial, committed and reverted state;
+//! `elastica.rs` the exact large-deflection cantilever (Bisshopp & Drucker) and the roll-up's
+//! circle, the static scenes' references.
 //!
 //! The family is not yet in the family table (`model::families!`): its pieces are built
 //! and tested here first.
+pub mod elastica;
 pub mod material;
