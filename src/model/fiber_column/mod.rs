@@ -3,12 +3,29 @@
 //! held in a rotation chart, with hysteretic fiber materials, under static load or
 //! displacement control and under a ground-acceleration pulse.
 //!
-//! Files: `material/` the uniaxial fiber materials (OpenSees' `Concrete01`, `Concrete02`,
-//! `Steel01`, `Steel02` and a linear elastic one) with trial, committed and reverted state;
-//! `elastica.rs` the exact large-deflection cantilever (Bisshopp & Drucker) and the roll-up's
-//! circle, the static scenes' references.
+//! Files, bottom up: `material/` the uniaxial fiber materials (OpenSees' `Concrete01`,
+//! `Concrete02`, `Steel01`, `Steel02` and a linear elastic one) with trial, committed and
+//! reverted state; `section.rs` the fiber and elastic sections and `layout.rs` their patches
+//! and bar layers; `quadrature.rs` the Lobatto and Legendre points; `basic.rs` the
+//! force-based and displacement-based elements in their basic system; `corotational.rs` the
+//! 3-D corotational transformation; `chart.rs` the nodal rotation charts (the `param`
+//! axis); `column.rs` the assembled cantilever and its static Newton step; `elastica.rs` the
+//! exact large-deflection cantilever (Bisshopp & Drucker) and the roll-up's circle, the
+//! static scenes' references. `column_tests.rs` checks the column against the elastica and
+//! the roll-up, `rc_tests.rs` against the stored OpenSees runs of the RC column.
 //!
 //! The family is not yet in the family table (`model::families!`): its pieces are built
 //! and tested here first.
+pub mod basic;
+pub mod chart;
+pub mod column;
+#[cfg(test)]
+mod column_tests;
+pub mod corotational;
 pub mod elastica;
+pub mod layout;
 pub mod material;
+pub mod quadrature;
+#[cfg(test)]
+mod rc_tests;
+pub mod section;

@@ -1,0 +1,335 @@
+//! The cantilever column as a structure: `n` two-node corotational elements along the global
+//! z axis from a clamped base, six unknowns per free node (the displacement and the spatial
+//! rotation increment `dw`), the nodes' rotations held in a [`RotationChart`], and the static
+//! Newton step under load control with, optionally, one prescribed displacement (the
+//! displacement control of the cyclic scenes: the prescribed degree of freedom leaves the
+//! unknowns and its residual is the force that holds it, the base shear's counterpart).
+//!
+//! Newton's step solves `K dx = -(f_int - f_ext)` on the free unknowns (the first iteration
+//! of a step also carries the prescribed increment, `K_ff dx_f = -(r_f + K_fp dx_p)`),
+//! moves the nodes by `dx` and turns their rotations with each chart's retraction; the
+//! element states are trial states until the step converges and are then committed (or
+//! reverted, on failure). Convergence: the energy of the correction `|dx . r|` at or below
+//! the step's tolerance (J), as OpenSees' `EnergyIncr`. The in-plane rotation of the top,
+//! `top_turn`, is the sum of the increments' components about global y (unwrapped: it
+//! passes `pi` and `2 pi` without jumping, whatever the chart).
+//!
+//! Invariants: the base node never moves; between steps every element is committed; the
+//! tangent is that of the update `R <- exp([dw]x) R` (`corotational.rs`), assembled densely
+//! (the columns here have at most a few hundred unknowns). Where it fails: a load beyond the
+//! column's limit point under load control (no equilibrium nearby) ends in a typed
+//! `NewtonFailure`.
+use nalgebra::{DMatrix, DVector, Vector3};
+
+use super::basic::{Basic, ElementFailure};
+use super::chart::RotationChart;
+use super::corotational::Corotational;
+use crate::structural::lu::Lu;
+
+/// Why a static step failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NewtonFailure {
+    /// No convergence within the iteration limit.
+    NoConvergence { iterations: usize, energy: f64 },
+    /// An element's state determination failed.
+    Element {
+        element: usize,
+        failure: ElementFailure,
+    },
+    /// The tangent is singular.
+    SingularTangent,
+}
+
+impl std::fmt::Display for NewtonFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::NoConvergence { iterations, energy } => write!(
+                f,
+                "Newton did not converge in {iterations} iterations (last energy {energy:e} J)"
+            ),
+            Self::Element { element, failure } => write!(f, "element {element}: {failure}"),
+            Self::SingularTangent => write!(f, "singular tangent"),
+        }
+    }
+}
+
+/// One prescribed displacement: free-node unknown index and its target value.
+#[derive(Debug, Clone, Copy)]
+pub struct Prescribed {
+    pub dof: usize,
+    pub value: f64,
+}
+
+/// The counts of one converged step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct StepCount {
+    pub iterations: usize,
+    pub element_iterations: u64,
+    pub element_subdivisions: u64,
+}
+
+/// The column: elements, node states and the Newton workspace.
+pub struct Column<C: RotationChart> {
+    elements: Vec<(Corotational, Basic)>,
+    x0: Vec<Vector3<f64>>,
+    x: Vec<Vector3<f64>>,
+    rot: Vec<C::Coords>,
+    x_c: Vec<Vector3<f64>>,
+    rot_c: Vec<C::Coords>,
+    top_turn: f64,
+    top_turn_c: f64,
+    f_int: DVector<f64>,
+    k: DMatrix<f64>,
+    lu: Lu,
+    dx: DVector<f64>,
+}
+
+impl<C: RotationChart> Column<C> {
+    /// A column of height `h` along global z in `elements.len()` equal elements (their basic
+    /// elements given bottom first), local y along global x (the plane of bending x-z).
+    pub fn new(h: f64, elements: Vec<Basic>) -> Result<Self, String> {
+        let n = elements.len();
+        if n == 0 {
+            return Err("a column needs at least one element".into());
+        }
+        let x0: Vec<Vector3<f64>> = (0..=n)
+            .map(|i| Vector3::new(0.0, 0.0, h * i as f64 / n as f64))
+            .collect();
+        let mut els = Vec::with_capacity(n);
+        for (i, b) in elements.into_iter().enumerate() {
+            els.push((Corotational::new(x0[i], x0[i + 1], Vector3::x())?, b));
+        }
+        let dim = 6 * n;
+        Ok(Self {
+            elements: els,
+            x: x0.clone(),
+            x_c: x0.clone(),
+            x0,
+            rot: vec![C::identity(); n + 1],
+            rot_c: vec![C::identity(); n + 1],
+            top_turn: 0.0,
+            top_turn_c: 0.0,
+            f_int: DVector::zeros(dim),
+            k: DMatrix::zeros(dim, dim),
+            lu: Lu::new(dim),
+            dx: DVector::zeros(dim),
+        })
+    }
+
+    /// The number of unknowns (6 per free node).
+    pub fn dim(&self) -> usize {
+        6 * self.elements.len()
+    }
+
+    /// The unknown index of component `c` (0..6: ux, uy, uz, wx, wy, wz) of the top node.
+    pub fn top_dof(&self, c: usize) -> usize {
+        self.dim() - 6 + c
+    }
+
+    /// The top node's displacement from its initial position.
+    pub fn top_displacement(&self) -> Vector3<f64> {
+        let n = self.elements.len();
+        self.x[n] - self.x0[n]
+    }
+
+    /// The top's accumulated in-plane rotation (about global y), unwrapped.
+    pub fn top_turn(&self) -> f64 {
+        self.top_turn
+    }
+
+    /// The top node's rotation matrix.
+    pub fn top_rotation_matrix(&self) -> nalgebra::Matrix3<f64> {
+        C::matrix(&self.rot[self.elements.len()])
+    }
+
+    /// The elements (corotational frame and basic element).
+    pub fn elements(&self) -> &[(Corotational, Basic)] {
+        &self.elements
+    }
+
+    /// Assembles the internal force and tangent of the trial state; returns the base node's
+    /// internal force, which equals the support's reaction on the column.
+    fn assemble(&mut self) -> Result<Vector3<f64>, NewtonFailure> {
+        self.f_int.fill(0.0);
+        self.k.fill(0.0);
+        let mut base = Vector3::zeros();
+        for (e, (cr, basic)) in self.elements.iter_mut().enumerate() {
+            let (r1, r2) = (C::matrix(&self.rot[e]), C::matrix(&self.rot[e + 1]));
+            let (v, _) = cr.deformations(&self.x[e], &self.x[e + 1], &r1, &r2);
+            let (qb, kb) = basic.update(&v).map_err(|failure| NewtonFailure::Element {
+                element: e,
+                failure,
+            })?;
+            let (f, k) = cr.global(&self.x[e], &self.x[e + 1], &r1, &r2, &qb, &kb);
+            if e == 0 {
+                base = f.fixed_rows::<3>(0).into_owned();
+            }
+            // Global unknowns of the element's 12: node e (absent for the base) then e + 1.
+            let map = |i: usize| -> Option<usize> {
+                let node = e + i / 6;
+                (node > 0).then(|| 6 * (node - 1) + i % 6)
+            };
+            for i in 0..12 {
+                let Some(gi) = map(i) else { continue };
+                self.f_int[gi] += f[i];
+                for j in 0..12 {
+                    if let Some(gj) = map(j) {
+                        self.k[(gi, gj)] += k[(i, j)];
+                    }
+                }
+            }
+        }
+        Ok(base)
+    }
+
+    fn apply(&mut self, dx: &DVector<f64>) {
+        let top = self.x.len() - 1;
+        let before = C::matrix(&self.rot[top]);
+        for node in 1..self.x.len() {
+            let o = 6 * (node - 1);
+            self.x[node] += Vector3::new(dx[o], dx[o + 1], dx[o + 2]);
+            let dw = Vector3::new(dx[o + 3], dx[o + 4], dx[o + 5]);
+            self.rot[node] = C::retract(&self.rot[node], &dw);
+        }
+        // The rotation the chart actually applied (a first-order retraction turns by less
+        // than |dw|), about global y.
+        let turned = crate::math::so3::log(&(C::matrix(&self.rot[top]) * before.transpose()));
+        self.top_turn += turned.y;
+    }
+
+    /// One static step to equilibrium with the external loads `f_ext` (length `dim`) and an
+    /// optional prescribed displacement; commits on success, reverts on failure. Returns the
+    /// counts and the support's reaction on the column at the base (the column's internal
+    /// force there): the base shear is `-R.x`, the axial force `-R.z`.
+    pub fn step(
+        &mut self,
+        f_ext: &DVector<f64>,
+        prescribed: Option<Prescribed>,
+        tol: f64,
+        max_iter: usize,
+    ) -> Result<(StepCount, Vector3<f64>), NewtonFailure> {
+        let count = |c: &Self| -> (u64, u64) {
+            c.elements.iter().fold((0, 0), |(i, s), (_, b)| {
+                (i + b.iterations(), s + b.subdivisions())
+            })
+        };
+        let before = count(self);
+        let out = self.iterate(f_ext, prescribed, tol, max_iter);
+        let after = count(self);
+        match out {
+            Ok((iterations, base)) => {
+                for (_, b) in &mut self.elements {
+                    b.commit();
+                }
+                self.x_c.clone_from(&self.x);
+                self.rot_c.clone_from(&self.rot);
+                self.top_turn_c = self.top_turn;
+                let count = StepCount {
+                    iterations,
+                    element_iterations: after.0 - before.0,
+                    element_subdivisions: after.1 - before.1,
+                };
+                Ok((count, base))
+            }
+            Err(e) => {
+                self.revert();
+                Err(e)
+            }
+        }
+    }
+
+    /// Returns every element and node to the last committed state.
+    pub fn revert(&mut self) {
+        for (_, b) in &mut self.elements {
+            b.revert();
+        }
+        self.x.clone_from(&self.x_c);
+        self.rot.clone_from(&self.rot_c);
+        self.top_turn = self.top_turn_c;
+    }
+
+    fn iterate(
+        &mut self,
+        f_ext: &DVector<f64>,
+        prescribed: Option<Prescribed>,
+        tol: f64,
+        max_iter: usize,
+    ) -> Result<(usize, Vector3<f64>), NewtonFailure> {
+        let dim = self.dim();
+        let mut energy = f64::INFINITY;
+        for iter in 1..=max_iter {
+            let base = self.assemble()?;
+            let mut r = &self.f_int - f_ext;
+            let mut k = std::mem::replace(&mut self.k, DMatrix::zeros(0, 0));
+            let mut dx_p = 0.0;
+            if let Some(p) = prescribed {
+                let cur = self.dof_value(p.dof);
+                dx_p = if iter == 1 { p.value - cur } else { 0.0 };
+                // Move the known increment to the right side, then decouple the row.
+                for i in 0..dim {
+                    r[i] += k[(i, p.dof)] * dx_p;
+                }
+                for j in 0..dim {
+                    k[(p.dof, j)] = 0.0;
+                    k[(j, p.dof)] = 0.0;
+                }
+                k[(p.dof, p.dof)] = 1.0;
+                r[p.dof] = 0.0;
+            }
+            let factored = self.lu.factor_from(&k);
+            self.k = k;
+            factored.map_err(|_| NewtonFailure::SingularTangent)?;
+            self.dx.copy_from(&r);
+            self.dx.neg_mut();
+            self.lu
+                .solve_in_place(&mut self.dx)
+                .map_err(|_| NewtonFailure::SingularTangent)?;
+            if let Some(p) = prescribed {
+                self.dx[p.dof] = dx_p;
+            }
+            energy = self.dx.dot(&r).abs();
+            if !energy.is_finite() {
+                break;
+            }
+            let dx = std::mem::replace(&mut self.dx, DVector::zeros(0));
+            self.apply(&dx);
+            self.dx = dx;
+            if energy <= tol && dx_p == 0.0 {
+                // Leave the element states consistent with the final configuration.
+                let base = self.assemble()?;
+                return Ok((iter, base));
+            }
+            let _ = base;
+        }
+        Err(NewtonFailure::NoConvergence {
+            iterations: max_iter,
+            energy,
+        })
+    }
+
+    /// The current value of unknown `dof` as a displacement (translations only).
+    fn dof_value(&self, dof: usize) -> f64 {
+        let node = dof / 6 + 1;
+        let c = dof % 6;
+        assert!(c < 3, "only translations can be prescribed");
+        self.x[node][c] - self.x0[node][c]
+    }
+
+    /// The internal force of the committed (or trial) state at the free unknowns.
+    pub fn internal_force(&self) -> &DVector<f64> {
+        &self.f_int
+    }
+
+    /// Work done on the elements and their recoverable energy (J), summed over the column.
+    pub fn energies(&self) -> (f64, f64) {
+        let mut out = (0.0, 0.0);
+        for (e, (cr, b)) in self.elements.iter().enumerate() {
+            let (r1, r2) = (C::matrix(&self.rot[e]), C::matrix(&self.rot[e + 1]));
+            let (v, _) = cr.deformations(&self.x[e], &self.x[e + 1], &r1, &r2);
+            let (w, r) = b.energies(v[5]);
+            out.0 += w;
+            out.1 += r;
+        }
+        out
+    }
+}

@@ -1,0 +1,374 @@
+//! The 3-D corotational transformation of a two-node beam element: from the nodes' positions
+//! and rotations to the six basic deformations of the element's rigid-body-free (basic)
+//! system, their first variation `B` and the element's global force and tangent.
+//!
+//! Following the element-independent corotational frame of Crisfield (1990, "A consistent
+//! co-rotational formulation for non-linear three-dimensional beam elements", CMAME 81) and
+//! Battini & Pacoste (2002, CMAME 191, section 3), derived here in our own notation. With the
+//! initial element frame `E0 = [e1 e2 e3]` (e1 along the axis), the node rotations `R_a`
+//! (a = 1, 2) and positions `x_a`:
+//!
+//! ```text
+//! (1) d = x2 - x1,  l = |d|,  r1 = d / l
+//! (2) T_a = R_a E0 (the nodes' triads),  q_a = T_a e2-column,  q = (q1 + q2)/2
+//! (3) r3 = r1 x q / |r1 x q|,  r2 = r3 x r1,  Rr = [r1 r2 r3] (the corotated frame)
+//! (4) theta_a = log(Rr^T T_a) (local rotation vectors, components along r1, r2, r3)
+//! (5) v = [l - l0, theta_1z, theta_2z, theta_1y, theta_2y, theta_2x - theta_1x]
+//! ```
+//!
+//! The basic forces `q_b = [N, Mz1, Mz2, My1, My2, T]` are conjugate to (5). Variations: with
+//! the virtual spins `dw_a` (`dT_a = [dw_a]x T_a`), the frame's spin `dw_r` has the components
+//!
+//! ```text
+//! (6) dw_r.r3 = r2.dd / l,   dw_r.r2 = -r3.dd / l,
+//!     dw_r.r1 = ((q.r1)(dw_r.r2) + (1/2) sum_a dw_a.(q_a x r3)) / (q.r2)
+//! ```
+//!
+//! (the last from `r3.q = 0` held along the variation), the local rotations' left spins are
+//! `da_a = Rr^T (dw_a - dw_r)` and `dtheta_a = dexp_inv(theta_a) da_a`, which gives the rows
+//! of `B = dv/d(x1, w1, x2, w2)`. The global internal force is `f = B^T q_b` and the tangent
+//! `K = B^T k_b B + K_g`, whose geometric part `K_g = d(B^T q_b)/d(config)` at fixed `q_b`
+//! is formed by central differences of the exact `B` along the exponential
+//! (`x_a + e`, `exp([e]x) R_a`, steps 1e-5 `l0` and 1e-5 rad): its relative error is about
+//! 1e-10 (truncation `(1e-5)^2`, rounding `1e-16 / 1e-5`), which leaves Newton's convergence
+//! quadratic to that level and changes no converged result (the residual is exact). The
+//! tangent is that of the update `R <- exp([dw]x) R` (not symmetric away from equilibrium).
+//!
+//! Where it fails: `|r1 x q| -> 0` (the nodes' e2 axes turned onto the chord: a local
+//! rotation of 90 degrees within one element) and `q.r2 -> 0` make the frame undefined; the
+//! local rotations must stay below `pi` (the `log`'s branch), which an element with a
+//! sensible mesh does by far.
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
+
+use crate::math::so3;
+
+/// The variation of the basic deformations, 6 x 12 (columns: `x1, w1, x2, w2`).
+pub type BMatrix = SMatrix<f64, 6, 12>;
+/// A 12 x 12 element matrix in global components.
+pub type Matrix12 = SMatrix<f64, 12, 12>;
+/// A 12-vector in global components.
+pub type Vector12 = SVector<f64, 12>;
+/// Basic deformations or forces.
+pub type Vector6 = SVector<f64, 6>;
+/// A basic stiffness.
+pub type Matrix6 = SMatrix<f64, 6, 6>;
+
+/// The fixed data of an element: initial end positions and frame.
+///
+/// # Example
+///
+/// A straight element turned rigidly by a rotation `Q` (both nodes moved by `Q`, their
+/// rotations set to `Q`) has zero basic deformations:
+///
+/// ```
+/// use mbdbench::model::fiber_column::corotational::Corotational;
+/// use mbdbench::math::so3;
+/// use nalgebra::{Matrix3, Vector3};
+///
+/// let e = Corotational::new(Vector3::zeros(), Vector3::new(0.0, 0.0, 2.0), Vector3::x())
+///     .unwrap();
+/// let q = so3::exp(&Vector3::new(0.3, -1.2, 0.7));
+/// let (v, _) = e.deformations(&Vector3::zeros(), &(q * Vector3::new(0.0, 0.0, 2.0)), &q, &q);
+/// assert!(v.norm() < 1e-14);
+/// ```
+#[derive(Debug, Clone, Copy)]
+pub struct Corotational {
+    x1: Vector3<f64>,
+    x2: Vector3<f64>,
+    /// Initial frame: columns e1 (axis), e2, e3.
+    e0: Matrix3<f64>,
+    l0: f64,
+}
+
+/// The kinematic quantities of one configuration that `B` is made of.
+struct Frame {
+    l: f64,
+    rr: Matrix3<f64>,
+    q: [Vector3<f64>; 2],
+    theta: [Vector3<f64>; 2],
+}
+
+impl Corotational {
+    /// An element from `x1` to `x2` whose local e2 axis is `e2_hint` made orthogonal to the
+    /// axis. Errors for a zero length or a hint along the axis.
+    pub fn new(x1: Vector3<f64>, x2: Vector3<f64>, e2_hint: Vector3<f64>) -> Result<Self, String> {
+        let d = x2 - x1;
+        let l0 = d.norm();
+        if !(l0 > 0.0 && l0.is_finite()) {
+            return Err(format!("element of length {l0}"));
+        }
+        let e1 = d / l0;
+        let e2 = e2_hint - e1 * e1.dot(&e2_hint);
+        if e2.norm() < 1e-8 * e2_hint.norm().max(1e-300) {
+            return Err("the local y axis hint lies along the element".into());
+        }
+        let e2 = e2.normalize();
+        let e3 = e1.cross(&e2);
+        Ok(Self {
+            x1,
+            x2,
+            e0: Matrix3::from_columns(&[e1, e2, e3]),
+            l0,
+        })
+    }
+
+    /// The initial length.
+    pub fn l0(&self) -> f64 {
+        self.l0
+    }
+
+    /// The initial frame (columns: axis, local y, local z).
+    pub fn e0(&self) -> &Matrix3<f64> {
+        &self.e0
+    }
+
+    /// The initial end positions.
+    pub fn ends(&self) -> (Vector3<f64>, Vector3<f64>) {
+        (self.x1, self.x2)
+    }
+
+    fn frame(
+        &self,
+        x1: &Vector3<f64>,
+        x2: &Vector3<f64>,
+        r1m: &Matrix3<f64>,
+        r2m: &Matrix3<f64>,
+    ) -> Frame {
+        let d = x2 - x1;
+        let l = d.norm();
+        let r1 = d / l;
+        let t1 = r1m * self.e0;
+        let t2 = r2m * self.e0;
+        let q1 = t1.column(1).into_owned();
+        let q2 = t2.column(1).into_owned();
+        let q = (q1 + q2) * 0.5;
+        let r3 = r1.cross(&q).normalize();
+        let r2 = r3.cross(&r1);
+        let rr = Matrix3::from_columns(&[r1, r2, r3]);
+        let theta = [
+            so3::log(&(rr.transpose() * t1)),
+            so3::log(&(rr.transpose() * t2)),
+        ];
+        Frame {
+            l,
+            rr,
+            q: [q1, q2],
+            theta,
+        }
+    }
+
+    /// The basic deformations (5) and their variation `B` at the configuration: current end
+    /// positions and node rotation matrices (rotations from the initial configuration).
+    pub fn deformations(
+        &self,
+        x1: &Vector3<f64>,
+        x2: &Vector3<f64>,
+        r1m: &Matrix3<f64>,
+        r2m: &Matrix3<f64>,
+    ) -> (Vector6, BMatrix) {
+        let f = self.frame(x1, x2, r1m, r2m);
+        let [t1, t2] = f.theta;
+        let v = Vector6::new(f.l - self.l0, t1.z, t2.z, t1.y, t2.y, t2.x - t1.x);
+        (v, self.variation(&f))
+    }
+
+    fn variation(&self, f: &Frame) -> BMatrix {
+        let r1 = f.rr.column(0).into_owned();
+        let r2 = f.rr.column(1).into_owned();
+        let r3 = f.rr.column(2).into_owned();
+        let q = (f.q[0] + f.q[1]) * 0.5;
+        let (q1p, q2p) = (q.dot(&r1), q.dot(&r2));
+        // Rows (1 x 12) of the frame spin's components, eq. (6).
+        let mut om = SMatrix::<f64, 3, 12>::zeros();
+        for k in 0..3 {
+            om[(2, k)] = -r2[k] / f.l;
+            om[(2, 6 + k)] = r2[k] / f.l;
+            om[(1, k)] = r3[k] / f.l;
+            om[(1, 6 + k)] = -r3[k] / f.l;
+        }
+        let g1 = f.q[0].cross(&r3) * 0.5;
+        let g2 = f.q[1].cross(&r3) * 0.5;
+        for k in 0..12 {
+            om[(0, k)] = q1p * om[(1, k)];
+        }
+        for k in 0..3 {
+            om[(0, 3 + k)] += g1[k];
+            om[(0, 9 + k)] += g2[k];
+        }
+        for k in 0..12 {
+            om[(0, k)] /= q2p;
+        }
+        // The frame spin in global components, 3 x 12: Rr * om.
+        let spin = f.rr * om;
+        let mut b = BMatrix::zeros();
+        for k in 0..3 {
+            b[(0, k)] = -r1[k];
+            b[(0, 6 + k)] = r1[k];
+        }
+        let mut dth = [SMatrix::<f64, 3, 12>::zeros(); 2];
+        for (a, out) in dth.iter_mut().enumerate() {
+            // da_a = Rr^T (S_a - spin), then dexp_inv.
+            let mut s = -spin;
+            for k in 0..3 {
+                s[(k, 3 + 6 * a + k)] += 1.0;
+            }
+            *out = so3::dexp_inv(&f.theta[a]) * (f.rr.transpose() * s);
+        }
+        for k in 0..12 {
+            b[(1, k)] = dth[0][(2, k)];
+            b[(2, k)] = dth[1][(2, k)];
+            b[(3, k)] = dth[0][(1, k)];
+            b[(4, k)] = dth[1][(1, k)];
+            b[(5, k)] = dth[1][(0, k)] - dth[0][(0, k)];
+        }
+        b
+    }
+
+    /// The element's global internal force `B^T q_b` and tangent `B^T k_b B + K_g` at the
+    /// configuration, for basic forces `q_b` and basic stiffness `k_b`.
+    pub fn global(
+        &self,
+        x1: &Vector3<f64>,
+        x2: &Vector3<f64>,
+        r1m: &Matrix3<f64>,
+        r2m: &Matrix3<f64>,
+        qb: &Vector6,
+        kb: &Matrix6,
+    ) -> (Vector12, Matrix12) {
+        let (_, b) = self.deformations(x1, x2, r1m, r2m);
+        let force = b.transpose() * qb;
+        let mut k = b.transpose() * kb * b;
+        let hx = 1e-5 * self.l0;
+        let hw = 1e-5;
+        for j in 0..12 {
+            let h = if (j / 3) % 2 == 0 { hx } else { hw };
+            let mut col = Vector12::zeros();
+            for sign in [1.0, -1.0] {
+                let mut e = Vector3::zeros();
+                e[j % 3] = sign * h;
+                let (mut y1, mut y2, mut m1, mut m2) = (*x1, *x2, *r1m, *r2m);
+                match j / 3 {
+                    0 => y1 += e,
+                    1 => m1 = so3::exp(&e) * m1,
+                    2 => y2 += e,
+                    _ => m2 = so3::exp(&e) * m2,
+                }
+                let bp = self.variation(&self.frame(&y1, &y2, &m1, &m2));
+                col += bp.transpose() * qb * sign;
+            }
+            k.set_column(j, &(k.column(j) + col / (2.0 * h)));
+        }
+        (force, k)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn element() -> Corotational {
+        Corotational::new(
+            Vector3::new(0.1, -0.2, 0.0),
+            Vector3::new(0.3, 0.1, 1.2),
+            Vector3::new(1.0, 0.2, 0.0),
+        )
+        .unwrap()
+    }
+
+    /// A deformed configuration: moved ends and rotated nodes.
+    fn config() -> (Vector3<f64>, Vector3<f64>, Matrix3<f64>, Matrix3<f64>) {
+        (
+            Vector3::new(0.12, -0.25, 0.03),
+            Vector3::new(0.5, 0.0, 1.1),
+            so3::exp(&Vector3::new(0.2, -0.4, 0.3)),
+            so3::exp(&Vector3::new(-0.1, -0.5, 0.6)),
+        )
+    }
+
+    fn perturbed(
+        c: &(Vector3<f64>, Vector3<f64>, Matrix3<f64>, Matrix3<f64>),
+        d: &Vector12,
+    ) -> (Vector3<f64>, Vector3<f64>, Matrix3<f64>, Matrix3<f64>) {
+        let s = |i: usize| Vector3::new(d[i], d[i + 1], d[i + 2]);
+        (
+            c.0 + s(0),
+            c.1 + s(6),
+            so3::exp(&s(3)) * c.2,
+            so3::exp(&s(9)) * c.3,
+        )
+    }
+
+    // B is the derivative of the basic deformations along x_a + e, exp([e]x) R_a: each column
+    // against a central difference of v (step 1e-6), to 1e-8.
+    #[test]
+    fn b_is_the_derivative_of_v() {
+        let e = element();
+        let c = config();
+        let (_, b) = e.deformations(&c.0, &c.1, &c.2, &c.3);
+        for j in 0..12 {
+            let mut d = Vector12::zeros();
+            d[j] = 1e-6;
+            let p = perturbed(&c, &d);
+            let m = perturbed(&c, &(-d));
+            let (vp, _) = e.deformations(&p.0, &p.1, &p.2, &p.3);
+            let (vm, _) = e.deformations(&m.0, &m.1, &m.2, &m.3);
+            let fd = (vp - vm) / 2e-6;
+            let err = (fd - b.column(j)).norm();
+            assert!(err < 1e-8, "column {j}: {err:e}");
+        }
+    }
+
+    // The tangent is the derivative of the global force at fixed basic stiffness: with
+    // q_b = q0 + k_b (v - v0) (a linear elastic basic element), K against a central
+    // difference of B^T q_b (step 1e-6), to 1e-7 relative.
+    #[test]
+    fn tangent_is_the_derivative_of_the_force() {
+        let e = element();
+        let c = config();
+        let (v0, _) = e.deformations(&c.0, &c.1, &c.2, &c.3);
+        let q0 = Vector6::new(3.0, -1.0, 2.0, 0.5, -0.7, 0.4);
+        let mut kb = Matrix6::identity() * 2.0;
+        kb[(1, 2)] = 0.5;
+        kb[(2, 1)] = 0.5;
+        let force_at = |p: &(Vector3<f64>, Vector3<f64>, Matrix3<f64>, Matrix3<f64>)| {
+            let (v, b) = e.deformations(&p.0, &p.1, &p.2, &p.3);
+            b.transpose() * (q0 + kb * (v - v0))
+        };
+        let (_, k) = e.global(&c.0, &c.1, &c.2, &c.3, &q0, &kb);
+        let scale = k.norm();
+        for j in 0..12 {
+            let mut d = Vector12::zeros();
+            d[j] = 1e-6;
+            let fd = (force_at(&perturbed(&c, &d)) - force_at(&perturbed(&c, &(-d)))) / 2e-6;
+            let err = (fd - k.column(j)).norm() / scale;
+            assert!(err < 1e-7, "column {j}: {err:e}");
+        }
+    }
+
+    // A rigid motion (translation plus rotation of the whole element) leaves v at zero, and
+    // B annihilates the six rigid-body velocities (translations and the spin of everything).
+    #[test]
+    fn rigid_motions_are_free() {
+        let e = element();
+        let rot = so3::exp(&Vector3::new(1.0, 2.0, -0.5));
+        let t = Vector3::new(0.3, -2.0, 5.0);
+        let (x1, x2) = e.ends();
+        let (v, b) = e.deformations(&(rot * x1 + t), &(rot * x2 + t), &rot, &rot);
+        assert!(v.norm() < 1e-14, "{v}");
+        let (p1, p2) = (rot * x1 + t, rot * x2 + t);
+        for k in 0..3 {
+            let mut tr = Vector12::zeros();
+            tr[k] = 1.0;
+            tr[6 + k] = 1.0;
+            assert!((b * tr).norm() < 1e-13);
+            let mut w = Vector3::zeros();
+            w[k] = 1.0;
+            let mut sp = Vector12::zeros();
+            sp.fixed_rows_mut::<3>(0).copy_from(&w.cross(&p1));
+            sp.fixed_rows_mut::<3>(3).copy_from(&w);
+            sp.fixed_rows_mut::<3>(6).copy_from(&w.cross(&p2));
+            sp.fixed_rows_mut::<3>(9).copy_from(&w);
+            assert!((b * sp).norm() < 1e-13, "{}", (b * sp).norm());
+        }
+    }
+}

@@ -1,0 +1,312 @@
+//! Tests of the reinforced-concrete column under the cyclic displacement protocol against the
+//! stored OpenSees runs of the same column (`references/fiber_column/opensees/`).
+use nalgebra::DVector;
+
+use super::basic::{Basic, DispBased, ForceBased};
+use super::chart::{RotationChart, So3};
+use super::column::{Column, NewtonFailure, Prescribed};
+use super::layout::{Layer, Patch, fiber_section};
+use super::material::{
+    Concrete01, Concrete01Params, Concrete02, Concrete02Params, Material, Steel01, Steel01Params,
+    Steel02, Steel02Params,
+};
+use super::section::Section;
+
+const H: f64 = 3.0;
+const P: f64 = 750e3;
+const GJ: f64 = 1.0e8;
+
+/// The column's section with the `_c01` (`second = false`) or `_c02` materials: core 16 x 2
+/// fibers, top and bottom covers 2 x 2, side covers 16 x 1, bars 4 + 4 + 2.
+fn section(second: bool) -> Section {
+    let (core, cover, steel) = if second {
+        (
+            Material::from(
+                Concrete02::new(Concrete02Params {
+                    fpc: -36e6,
+                    epsc0: -0.004,
+                    fpcu: -7.2e6,
+                    epscu: -0.02,
+                    lambda: 0.1,
+                    ft: 3e6,
+                    ets: 1.5e9,
+                })
+                .unwrap(),
+            ),
+            Material::from(
+                Concrete02::new(Concrete02Params {
+                    fpc: -30e6,
+                    epsc0: -0.002,
+                    fpcu: -6e6,
+                    epscu: -0.006,
+                    lambda: 0.1,
+                    ft: 3e6,
+                    ets: 1.5e9,
+                })
+                .unwrap(),
+            ),
+            Material::from(
+                Steel02::new(Steel02Params {
+                    fy: 420e6,
+                    e0: 200e9,
+                    b: 0.01,
+                    r0: 18.0,
+                    c_r1: 0.925,
+                    c_r2: 0.15,
+                })
+                .unwrap(),
+            ),
+        )
+    } else {
+        (
+            Material::from(
+                Concrete01::new(Concrete01Params {
+                    fpc: -36e6,
+                    epsc0: -0.004,
+                    fpcu: -30e6,
+                    epscu: -0.014,
+                })
+                .unwrap(),
+            ),
+            Material::from(
+                Concrete01::new(Concrete01Params {
+                    fpc: -30e6,
+                    epsc0: -0.002,
+                    fpcu: 0.0,
+                    epscu: -0.006,
+                })
+                .unwrap(),
+            ),
+            Material::from(
+                Steel01::new(Steel01Params {
+                    fy: 420e6,
+                    e0: 200e9,
+                    b: 0.01,
+                })
+                .unwrap(),
+            ),
+        )
+    };
+    let patch = |name: &str, m, y: [f64; 2], z: [f64; 2], ny, nz| Patch {
+        name: name.into(),
+        material: m,
+        y,
+        z,
+        ny,
+        nz,
+    };
+    let patches = [
+        patch("core", core, [-0.21, 0.21], [-0.21, 0.21], 16, 2),
+        patch("top", cover, [0.21, 0.25], [-0.25, 0.25], 2, 2),
+        patch("bottom", cover, [-0.25, -0.21], [-0.25, 0.25], 2, 2),
+        patch("side+", cover, [-0.21, 0.21], [0.21, 0.25], 16, 1),
+        patch("side-", cover, [-0.21, 0.21], [-0.25, -0.21], 16, 1),
+    ];
+    let layer = |name: &str, y: f64, n| Layer {
+        name: name.into(),
+        material: steel,
+        y: [y, y],
+        z: [-0.21, 0.21],
+        n,
+        area: 4.91e-4,
+    };
+    let layers = [
+        layer("top", 0.21, 4),
+        layer("bottom", -0.21, 4),
+        layer("mid", 0.0, 2),
+    ];
+    Section::Fiber(fiber_section(0.5, 0.5, &patches, &layers).unwrap())
+}
+
+/// The protocol's top displacement after each 0.5 mm step.
+fn protocol() -> Vec<f64> {
+    let mut out = vec![];
+    let mut u = 0i64; // half-millimetres
+    for amp_mm in [7.5, 15.0, 30.0, 45.0, 60.0, 90.0, 120.0] {
+        let a = (amp_mm * 2.0f64).round() as i64;
+        for _ in 0..2 {
+            for target in [a, -a, 0] {
+                while u != target {
+                    u += (target - u).signum();
+                    out.push(u as f64 * 0.5e-3);
+                }
+            }
+        }
+    }
+    out
+}
+
+struct Run {
+    shear: Vec<f64>,
+    top: Vec<f64>,
+    axial: Vec<f64>,
+    iterations: usize,
+    element_iterations: u64,
+    subdivisions: u64,
+    seconds: f64,
+    /// The step (1-based) that failed and why.
+    failure: Option<(usize, NewtonFailure)>,
+}
+
+fn run_cyclic<C: RotationChart>(second: bool, elements: usize, force_based: bool) -> Run {
+    let s = section(second);
+    let h = H / elements as f64;
+    let els = (0..elements)
+        .map(|_| {
+            if force_based {
+                Basic::Force(Box::new(ForceBased::new(h, GJ, &s, 5, 1e-16, 50).unwrap()))
+            } else {
+                Basic::Disp(DispBased::new(h, GJ, &s, 5).unwrap())
+            }
+        })
+        .collect();
+    let mut col = Column::<C>::new(H, els).unwrap();
+    let mut f = DVector::zeros(col.dim());
+    let tol = 1e-20;
+    for k in 1..=10 {
+        f[col.top_dof(2)] = -P * k as f64 / 10.0;
+        col.step(&f, None, tol, 50).unwrap();
+    }
+    let start = std::time::Instant::now();
+    let mut out = Run {
+        shear: vec![],
+        top: vec![],
+        axial: vec![],
+        iterations: 0,
+        element_iterations: 0,
+        subdivisions: 0,
+        seconds: 0.0,
+        failure: None,
+    };
+    let dof = col.top_dof(0);
+    for (k, u) in protocol().into_iter().enumerate() {
+        let (c, base) = match col.step(&f, Some(Prescribed { dof, value: u }), tol, 50) {
+            Ok(x) => x,
+            Err(e) => {
+                out.failure = Some((k + 1, e));
+                break;
+            }
+        };
+        out.iterations += c.iterations;
+        out.element_iterations += c.element_iterations;
+        out.subdivisions += c.element_subdivisions;
+        out.shear.push(-base.x);
+        out.top.push(col.top_displacement().x);
+        out.axial.push(col.top_displacement().z);
+    }
+    out.seconds = start.elapsed().as_secs_f64();
+    out
+}
+
+fn reference(scene: &str) -> serde_json::Value {
+    let path = format!(
+        "{}/references/fiber_column/opensees/{scene}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn column(r: &serde_json::Value, name: &str) -> Vec<f64> {
+    r["data"][name]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// `int V du + P dv` by the trapezoid rule (v the shortening), from rest.
+fn dissipated(shear: &[f64], top: &[f64], axial: &[f64]) -> f64 {
+    let mut w = 0.0;
+    for k in 1..shear.len() {
+        w += 0.5 * (shear[k] + shear[k - 1]) * (top[k] - top[k - 1]);
+        w += P * -(axial[k] - axial[k - 1]);
+    }
+    w
+}
+
+fn compare(scene: &str, second: bool) -> Run {
+    let r = reference(scene);
+    let run = run_cyclic::<So3>(second, 1, true);
+    if let Some((k, e)) = &run.failure {
+        eprintln!("{scene}: step {k} failed: {e}");
+    }
+    // Reference rows: 0 is the state after the axial prelude, row k after step k.
+    let v_ref = column(&r, "base_shear");
+    let u_ref = column(&r, "top_displacement");
+    let a_ref = column(&r, "top_axial");
+    let peak = v_ref.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let mut sq = 0.0;
+    let mut worst = 0.0f64;
+    for (k, v) in run.shear.iter().enumerate() {
+        let d = v - v_ref[k + 1];
+        sq += d * d;
+        worst = worst.max(d.abs());
+    }
+    let rms = (sq / run.shear.len() as f64).sqrt() / peak;
+    let mut shear = vec![v_ref[0]];
+    shear.extend(&run.shear);
+    let mut top = vec![0.0];
+    top.extend(&run.top);
+    let mut axial = vec![a_ref[0]];
+    axial.extend(&run.axial);
+    let w = dissipated(&shear, &top, &axial);
+    let n = shear.len();
+    let w_ref = dissipated(&v_ref[..n], &u_ref[..n], &a_ref[..n]);
+    eprintln!(
+        "{scene}: base shear rms {rms:.3e}, max {:.3e} of peak {peak:.1} N; dissipated {w:.2} vs {w_ref:.2} J ({:.2e}); {} iterations, {} element iterations, {} subdivisions, {:.3} s",
+        worst / peak,
+        (w - w_ref) / w_ref,
+        run.iterations,
+        run.element_iterations,
+        run.subdivisions,
+        run.seconds
+    );
+    assert!(rms < 0.01, "{scene}: rms {rms:e}");
+    assert!(
+        ((w - w_ref) / w_ref).abs() < 0.02,
+        "{scene}: {w} vs {w_ref}"
+    );
+    run
+}
+
+// The c01 column (one force-based element, Concrete01 and Steel01) follows OpenSees' base
+// shear over the whole protocol within 1 % RMS of the peak, and dissipates the same energy
+// within 2 %.
+#[test]
+fn rc_cyclic_c01_matches_opensees() {
+    let run = compare("rc_cyclic_c01", false);
+    assert!(run.failure.is_none());
+    assert_eq!(run.shear.len(), protocol().len());
+}
+
+// On the c02 column (Concrete02 and Steel02) plain Newton stops with a typed failure at
+// step 4154, the step where OpenSees' plain Newton also cycles (a core fiber flips between
+// its loading and unloading branches on alternate iterations; the stored reference was made
+// with OpenSees' KrylovNewton, which reaches the same equilibria). Up to there the base shear
+// follows the reference within 1 % RMS of the peak.
+#[test]
+fn rc_cyclic_c02_plain_newton_stops_where_opensees_does() {
+    let run = compare("rc_cyclic_c02", true);
+    let (k, e) = run.failure.expect("plain Newton passes step 4154");
+    assert_eq!(k, 4154);
+    assert!(matches!(e, NewtonFailure::NoConvergence { .. }), "{e}");
+}
+
+// The displacement-based element's mesh dependence: with 1, 2, 4, 8 elements its peak base
+// shear approaches the force-based element's from above (a stiffer, over-constrained
+// curvature field).
+#[test]
+fn disp_based_mesh_dependence() {
+    let fb = run_cyclic::<So3>(false, 1, true);
+    let peak = |r: &Run| r.shear.iter().take(400).fold(0.0f64, |m, x| m.max(x.abs()));
+    let p_fb = peak(&fb);
+    let mut last = f64::INFINITY;
+    for n in [1, 2, 4, 8] {
+        let db = run_cyclic::<So3>(false, n, false);
+        let p = peak(&db);
+        eprintln!("disp_based n{n}: peak shear {p:.1} (force-based {p_fb:.1})");
+        assert!(p <= last * (1.0 + 1e-9));
+        last = p;
+    }
+}
