@@ -299,7 +299,7 @@ impl ForceBased {
         for s in &mut self.sections {
             s.commit();
         }
-        self.committed = self.trial.clone();
+        self.committed.clone_from(&self.trial);
     }
 
     /// Returns to the last committed state.
@@ -307,7 +307,7 @@ impl ForceBased {
         for s in &mut self.sections {
             s.revert();
         }
-        self.trial = self.committed.clone();
+        self.trial.clone_from(&self.committed);
     }
 
     /// The sections' work and recoverable energy integrated over the element (J), with the

@@ -82,6 +82,13 @@ pub struct Column<C: RotationChart> {
     k: DMatrix<f64>,
     lu: Lu,
     dx: DVector<f64>,
+    /// `f_int`, `k` and `base` are those of the current configuration and element states.
+    assembled: bool,
+    base: Vector3<f64>,
+    x_ls: Vec<Vector3<f64>>,
+    rot_ls: Vec<C::Coords>,
+    /// Trial evaluations of the line search since construction.
+    pub line_evaluations: u64,
 }
 
 impl<C: RotationChart> Column<C> {
@@ -113,6 +120,11 @@ impl<C: RotationChart> Column<C> {
             k: DMatrix::zeros(dim, dim),
             lu: Lu::new(dim),
             dx: DVector::zeros(dim),
+            assembled: false,
+            base: Vector3::zeros(),
+            x_ls: vec![Vector3::zeros(); n + 1],
+            rot_ls: vec![C::identity(); n + 1],
+            line_evaluations: 0,
         })
     }
 
@@ -150,17 +162,18 @@ impl<C: RotationChart> Column<C> {
     /// Assembles the internal force and tangent of the trial state; returns the base node's
     /// internal force, which equals the support's reaction on the column.
     fn assemble(&mut self) -> Result<Vector3<f64>, NewtonFailure> {
+        self.assembled = false;
         self.f_int.fill(0.0);
         self.k.fill(0.0);
         let mut base = Vector3::zeros();
         for (e, (cr, basic)) in self.elements.iter_mut().enumerate() {
             let (r1, r2) = (C::matrix(&self.rot[e]), C::matrix(&self.rot[e + 1]));
-            let (v, _) = cr.deformations(&self.x[e], &self.x[e + 1], &r1, &r2);
+            let (v, kin) = cr.at(&self.x[e], &self.x[e + 1], &r1, &r2);
             let (qb, kb) = basic.update(&v).map_err(|failure| NewtonFailure::Element {
                 element: e,
                 failure,
             })?;
-            let (f, k) = cr.global(&self.x[e], &self.x[e + 1], &r1, &r2, &qb, &kb);
+            let (f, k) = cr.global_at(&kin, &qb, &kb);
             if e == 0 {
                 base = f.fixed_rows::<3>(0).into_owned();
             }
@@ -179,16 +192,22 @@ impl<C: RotationChart> Column<C> {
                 }
             }
         }
+        self.base = base;
+        self.assembled = true;
         Ok(base)
     }
 
     fn apply(&mut self, dx: &DVector<f64>) {
+        self.apply_scaled(dx, 1.0);
+    }
+
+    fn apply_scaled(&mut self, dx: &DVector<f64>, eta: f64) {
         let top = self.x.len() - 1;
         let before = C::matrix(&self.rot[top]);
         for node in 1..self.x.len() {
             let o = 6 * (node - 1);
-            self.x[node] += Vector3::new(dx[o], dx[o + 1], dx[o + 2]);
-            let dw = Vector3::new(dx[o + 3], dx[o + 4], dx[o + 5]);
+            self.x[node] += Vector3::new(dx[o], dx[o + 1], dx[o + 2]) * eta;
+            let dw = Vector3::new(dx[o + 3], dx[o + 4], dx[o + 5]) * eta;
             self.rot[node] = C::retract(&self.rot[node], &dw);
         }
         // The rotation the chart actually applied (a first-order retraction turns by less
@@ -207,6 +226,7 @@ impl<C: RotationChart> Column<C> {
         prescribed: Option<Prescribed>,
         tol: f64,
         max_iter: usize,
+        line_search: bool,
     ) -> Result<(StepCount, Vector3<f64>), NewtonFailure> {
         let count = |c: &Self| -> (u64, u64) {
             c.elements.iter().fold((0, 0), |(i, s), (_, b)| {
@@ -214,7 +234,7 @@ impl<C: RotationChart> Column<C> {
             })
         };
         let before = count(self);
-        let out = self.iterate(f_ext, prescribed, tol, max_iter);
+        let out = self.iterate(f_ext, prescribed, tol, max_iter, line_search);
         let after = count(self);
         match out {
             Ok((iterations, base)) => {
@@ -240,6 +260,7 @@ impl<C: RotationChart> Column<C> {
 
     /// Returns every element and node to the last committed state.
     pub fn revert(&mut self) {
+        self.assembled = false;
         for (_, b) in &mut self.elements {
             b.revert();
         }
@@ -254,17 +275,26 @@ impl<C: RotationChart> Column<C> {
         prescribed: Option<Prescribed>,
         tol: f64,
         max_iter: usize,
+        line_search: bool,
     ) -> Result<(usize, Vector3<f64>), NewtonFailure> {
         let dim = self.dim();
         let mut energy = f64::INFINITY;
         for iter in 1..=max_iter {
-            let base = self.assemble()?;
+            // The first iteration of a step starts where the last step converged: its
+            // assembly is still valid (same configuration, committed element states).
+            if !(iter == 1 && self.assembled) {
+                self.assemble()?;
+            }
             let mut r = &self.f_int - f_ext;
-            let mut k = std::mem::replace(&mut self.k, DMatrix::zeros(0, 0));
             let mut dx_p = 0.0;
+            if let Some(p) = prescribed
+                && iter == 1
+            {
+                dx_p = p.value - self.dof_value(p.dof);
+            }
+            let k = self.lu.matrix_mut();
+            k.copy_from(&self.k);
             if let Some(p) = prescribed {
-                let cur = self.dof_value(p.dof);
-                dx_p = if iter == 1 { p.value - cur } else { 0.0 };
                 // Move the known increment to the right side, then decouple the row.
                 for i in 0..dim {
                     r[i] += k[(i, p.dof)] * dx_p;
@@ -276,9 +306,9 @@ impl<C: RotationChart> Column<C> {
                 k[(p.dof, p.dof)] = 1.0;
                 r[p.dof] = 0.0;
             }
-            let factored = self.lu.factor_from(&k);
-            self.k = k;
-            factored.map_err(|_| NewtonFailure::SingularTangent)?;
+            self.lu
+                .factor()
+                .map_err(|_| NewtonFailure::SingularTangent)?;
             self.dx.copy_from(&r);
             self.dx.neg_mut();
             self.lu
@@ -292,14 +322,17 @@ impl<C: RotationChart> Column<C> {
                 break;
             }
             let dx = std::mem::replace(&mut self.dx, DVector::zeros(0));
-            self.apply(&dx);
+            if line_search && dx_p == 0.0 && energy > tol {
+                self.search_line(&dx, &r, f_ext, prescribed)?;
+            } else {
+                self.apply(&dx);
+            }
             self.dx = dx;
             if energy <= tol && dx_p == 0.0 {
                 // Leave the element states consistent with the final configuration.
                 let base = self.assemble()?;
                 return Ok((iter, base));
             }
-            let _ = base;
         }
         Err(NewtonFailure::NoConvergence {
             iterations: max_iter,
@@ -307,12 +340,65 @@ impl<C: RotationChart> Column<C> {
         })
     }
 
-    /// The current value of unknown `dof` as a displacement (translations only).
+    /// The current value of unknown `dof` as a displacement (translations only: a
+    /// prescribed rotation component reads 0).
     fn dof_value(&self, dof: usize) -> f64 {
         let node = dof / 6 + 1;
         let c = dof % 6;
-        assert!(c < 3, "only translations can be prescribed");
-        self.x[node][c] - self.x0[node][c]
+        if c < 3 {
+            self.x[node][c] - self.x0[node][c]
+        } else {
+            0.0
+        }
+    }
+
+    /// The energy line search (the `_ls` variants): moves by `eta dx` from the current
+    /// configuration with `eta` chosen by regula falsi on `s(eta) = dx . r(x + eta dx)` until
+    /// `|s(eta)| <= 0.8 |s(0)|` (at most 10 trials, `eta` kept in [0.1, 1]); the full step
+    /// when it already satisfies that. Counts its trial evaluations.
+    fn search_line(
+        &mut self,
+        dx: &DVector<f64>,
+        r0: &DVector<f64>,
+        f_ext: &DVector<f64>,
+        prescribed: Option<Prescribed>,
+    ) -> Result<(), NewtonFailure> {
+        self.x_ls.clone_from(&self.x);
+        self.rot_ls.clone_from(&self.rot);
+        let turn = self.top_turn;
+        let s0 = dx.dot(r0);
+        let eval = |c: &mut Self, eta: f64| -> Result<f64, NewtonFailure> {
+            c.x.clone_from(&c.x_ls);
+            c.rot.clone_from(&c.rot_ls);
+            c.top_turn = turn;
+            c.apply_scaled(dx, eta);
+            c.assemble()?;
+            c.line_evaluations += 1;
+            let mut s = 0.0;
+            for i in 0..dx.len() {
+                if prescribed.is_some_and(|p| p.dof == i) {
+                    continue;
+                }
+                s += dx[i] * (c.f_int[i] - f_ext[i]);
+            }
+            Ok(s)
+        };
+        let (mut a, mut sa) = (0.0, s0);
+        let (mut b, mut sb) = (1.0, eval(self, 1.0)?);
+        for _ in 0..10 {
+            if sb.abs() <= 0.8 * s0.abs() || !sb.is_finite() || sb == sa {
+                break;
+            }
+            let eta = (b - sb * (b - a) / (sb - sa)).clamp(0.1, 1.0);
+            let s = eval(self, eta)?;
+            if s * sa < 0.0 {
+                (b, sb) = (eta, s);
+            } else {
+                (a, sa) = (b, sb);
+                (b, sb) = (eta, s);
+            }
+        }
+        Ok(())
     }
 
     /// The internal force of the committed (or trial) state at the free unknowns.

@@ -33,7 +33,7 @@ fn elastica_error<C: RotationChart>(n: usize, alpha: f64, steps: usize) -> (f64,
     let mut iterations = 0;
     for k in 1..=steps {
         f[col.top_dof(0)] = alpha * k as f64 / steps as f64;
-        let (c, _) = col.step(&f, None, 1e-20, 30).unwrap();
+        let (c, _) = col.step(&f, None, 1e-20, 30, false).unwrap();
         iterations += c.iterations;
     }
     let exact = elastica_tip(alpha).unwrap();
@@ -81,7 +81,7 @@ fn rollup<C: RotationChart>(n: usize, steps: usize) -> (f64, f64, f64) {
     for k in 1..=steps {
         let lambda = k as f64 / steps as f64;
         f[col.top_dof(4)] = lambda * std::f64::consts::TAU;
-        col.step(&f, None, 1e-20, 40).unwrap();
+        col.step(&f, None, 1e-20, 40, false).unwrap();
         let exact = rollup_tip(lambda);
         let u = col.top_displacement();
         let err = ((u.x - exact.across).powi(2) + (1.0 + u.z - exact.along).powi(2)).sqrt();
@@ -126,7 +126,7 @@ fn disp_based_equals_force_based_when_elastic() {
         let mut f = DVector::zeros(col.dim());
         for k in 1..=10 {
             f[col.top_dof(0)] = 2.0 * k as f64 / 10.0;
-            col.step(&f, None, 1e-20, 30).unwrap();
+            col.step(&f, None, 1e-20, 30, false).unwrap();
         }
         col.top_displacement()
     };

@@ -148,7 +148,12 @@ struct Run {
     failure: Option<(usize, NewtonFailure)>,
 }
 
-fn run_cyclic<C: RotationChart>(second: bool, elements: usize, force_based: bool) -> Run {
+fn run_cyclic<C: RotationChart>(
+    second: bool,
+    elements: usize,
+    force_based: bool,
+    line_search: bool,
+) -> Run {
     let s = section(second);
     let h = H / elements as f64;
     let els = (0..elements)
@@ -165,7 +170,7 @@ fn run_cyclic<C: RotationChart>(second: bool, elements: usize, force_based: bool
     let tol = 1e-20;
     for k in 1..=10 {
         f[col.top_dof(2)] = -P * k as f64 / 10.0;
-        col.step(&f, None, tol, 50).unwrap();
+        col.step(&f, None, tol, 50, false).unwrap();
     }
     let start = std::time::Instant::now();
     let mut out = Run {
@@ -180,7 +185,8 @@ fn run_cyclic<C: RotationChart>(second: bool, elements: usize, force_based: bool
     };
     let dof = col.top_dof(0);
     for (k, u) in protocol().into_iter().enumerate() {
-        let (c, base) = match col.step(&f, Some(Prescribed { dof, value: u }), tol, 50) {
+        let (c, base) = match col.step(&f, Some(Prescribed { dof, value: u }), tol, 50, line_search)
+        {
             Ok(x) => x,
             Err(e) => {
                 out.failure = Some((k + 1, e));
@@ -225,9 +231,9 @@ fn dissipated(shear: &[f64], top: &[f64], axial: &[f64]) -> f64 {
     w
 }
 
-fn compare(scene: &str, second: bool) -> Run {
+fn compare(scene: &str, second: bool, line_search: bool) -> Run {
     let r = reference(scene);
-    let run = run_cyclic::<So3>(second, 1, true);
+    let run = run_cyclic::<So3>(second, 1, true, line_search);
     if let Some((k, e)) = &run.failure {
         eprintln!("{scene}: step {k} failed: {e}");
     }
@@ -244,6 +250,15 @@ fn compare(scene: &str, second: bool) -> Run {
         worst = worst.max(d.abs());
     }
     let rms = (sq / run.shear.len() as f64).sqrt() / peak;
+    if let Some(k) =
+        (0..run.shear.len()).find(|&k| (run.shear[k] - v_ref[k + 1]).abs() > 1e-9 * peak)
+    {
+        eprintln!(
+            "{scene}: first departure at step {} ({:e} of peak)",
+            k + 1,
+            (run.shear[k] - v_ref[k + 1]) / peak
+        );
+    }
     let mut shear = vec![v_ref[0]];
     shear.extend(&run.shear);
     let mut top = vec![0.0];
@@ -275,7 +290,7 @@ fn compare(scene: &str, second: bool) -> Run {
 // within 2 %.
 #[test]
 fn rc_cyclic_c01_matches_opensees() {
-    let run = compare("rc_cyclic_c01", false);
+    let run = compare("rc_cyclic_c01", false, false);
     assert!(run.failure.is_none());
     assert_eq!(run.shear.len(), protocol().len());
 }
@@ -283,30 +298,28 @@ fn rc_cyclic_c01_matches_opensees() {
 // On the c02 column (Concrete02 and Steel02) plain Newton stops with a typed failure at
 // step 4154, the step where OpenSees' plain Newton also cycles (a core fiber flips between
 // its loading and unloading branches on alternate iterations; the stored reference was made
-// with OpenSees' KrylovNewton, which reaches the same equilibria). Up to there the base shear
-// follows the reference within 1 % RMS of the peak.
+// with OpenSees' KrylovNewton). Up to there the base shear follows the reference within 1 %
+// RMS of the peak (measured: 8.8e-14). The agreement to round-off is fragile: with an
+// earlier ordering of the same computations (each step re-assembling at its start), the run
+// left OpenSees' path at step 1679 by 1e-4 of the peak. Near a fiber's load reversal the
+// incremental problem has more than one converged solution, and round-off in Newton's
+// iterates decides which one is found.
 #[test]
 fn rc_cyclic_c02_plain_newton_stops_where_opensees_does() {
-    let run = compare("rc_cyclic_c02", true);
+    let run = compare("rc_cyclic_c02", true, false);
     let (k, e) = run.failure.expect("plain Newton passes step 4154");
     assert_eq!(k, 4154);
     assert!(matches!(e, NewtonFailure::NoConvergence { .. }), "{e}");
 }
 
-// The displacement-based element's mesh dependence: with 1, 2, 4, 8 elements its peak base
-// shear approaches the force-based element's from above (a stiffer, over-constrained
-// curvature field).
+// The energy line search (regula falsi on dx . r, the `_ls` variants) does not carry c02
+// through the protocol either: it stops with a typed failure (measured: at step 4154 too;
+// with the earlier ordering above, at step 1678), and up to there it follows the reference
+// within 1 % RMS of the peak.
 #[test]
-fn disp_based_mesh_dependence() {
-    let fb = run_cyclic::<So3>(false, 1, true);
-    let peak = |r: &Run| r.shear.iter().take(400).fold(0.0f64, |m, x| m.max(x.abs()));
-    let p_fb = peak(&fb);
-    let mut last = f64::INFINITY;
-    for n in [1, 2, 4, 8] {
-        let db = run_cyclic::<So3>(false, n, false);
-        let p = peak(&db);
-        eprintln!("disp_based n{n}: peak shear {p:.1} (force-based {p_fb:.1})");
-        assert!(p <= last * (1.0 + 1e-9));
-        last = p;
-    }
+fn rc_cyclic_c02_line_search_stops_with_a_typed_failure() {
+    let run = compare("rc_cyclic_c02", true, true);
+    let (k, e) = run.failure.expect("the line search completes c02");
+    assert!(k < protocol().len());
+    assert!(matches!(e, NewtonFailure::NoConvergence { .. }), "{e}");
 }

@@ -124,15 +124,25 @@ impl Section {
                 (k * e, k)
             }
             Section::Fiber(s) => {
-                let mut force = Vector3::zeros();
-                let mut k = Matrix3::zeros();
+                // The six distinct entries of the symmetric tangent, summed as scalars.
+                let (mut n, mut mz, mut my) = (0.0, 0.0, 0.0);
+                let [mut k00, mut k01, mut k02, mut k11, mut k12, mut k22] = [0.0; 6];
                 for f in &mut s.fibers {
-                    let a = Vector3::new(1.0, -f.y, f.z);
-                    let (sigma, et) = f.material.set_trial_strain(a.dot(e));
-                    force += a * (sigma * f.area);
-                    k += a * a.transpose() * (et * f.area);
+                    let (y, z) = (-f.y, f.z);
+                    let (sigma, et) = f.material.set_trial_strain(e.x + y * e.y + z * e.z);
+                    let (fa, ka) = (sigma * f.area, et * f.area);
+                    n += fa;
+                    mz += y * fa;
+                    my += z * fa;
+                    k00 += ka;
+                    k01 += y * ka;
+                    k02 += z * ka;
+                    k11 += y * y * ka;
+                    k12 += y * z * ka;
+                    k22 += z * z * ka;
                 }
-                (force, k)
+                let k = Matrix3::new(k00, k01, k02, k01, k11, k12, k02, k12, k22);
+                (Vector3::new(n, mz, my), k)
             }
         }
     }
