@@ -9,7 +9,7 @@
 //! of a step also carries the prescribed increment, `K_ff dx_f = -(r_f + K_fp dx_p)`),
 //! moves the nodes by `dx` and turns their rotations with each chart's retraction; the
 //! element states are trial states until the step converges and are then committed (or
-//! reverted, on failure). Convergence: the energy of the correction `|dx . r|` at or below
+//! reverted, on failure). Convergence: the energy of the correction `|dx . r| / 2` at or below
 //! the step's tolerance (J), as OpenSees' `EnergyIncr`. The in-plane rotation of the top,
 //! `top_turn`, is the sum of the increments' components about global y (unwrapped: it
 //! passes `pi` and `2 pi` without jumping, whatever the chart).
@@ -60,6 +60,22 @@ pub struct Prescribed {
     pub value: f64,
 }
 
+/// The inertia and damping of a dynamic step (Newmark's family, iterating on the
+/// displacement): a lumped mass per unknown (0 for the massless ones), mass-proportional
+/// damping `C = a0 M`, and the step's predictors, so that at the trial displacement `u`
+/// the acceleration is `a = c_a (u - u_pred)` and the velocity `v = v_pred + c_v a`
+/// (Newmark: `c_a = 1/(beta h^2)`, `c_v = gamma h`). The residual gains `M (a + a0 v)` and
+/// the tangent `M c_a (1 + a0 c_v)`.
+#[derive(Debug, Clone, Copy)]
+pub struct Inertia<'a> {
+    pub mass: &'a DVector<f64>,
+    pub a0: f64,
+    pub c_a: f64,
+    pub c_v: f64,
+    pub u_pred: &'a DVector<f64>,
+    pub v_pred: &'a DVector<f64>,
+}
+
 /// The counts of one converged step.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct StepCount {
@@ -72,9 +88,11 @@ pub struct StepCount {
 pub struct Column<C: RotationChart> {
     elements: Vec<(Corotational, Basic)>,
     x0: Vec<Vector3<f64>>,
-    x: Vec<Vector3<f64>>,
+    /// Node displacements from `x0` (kept apart from the positions, so increments far below
+    /// the positions' rounding, 4e-16 m at 3 m, are not lost).
+    u: Vec<Vector3<f64>>,
     rot: Vec<C::Coords>,
-    x_c: Vec<Vector3<f64>>,
+    u_c: Vec<Vector3<f64>>,
     rot_c: Vec<C::Coords>,
     top_turn: f64,
     top_turn_c: f64,
@@ -85,7 +103,7 @@ pub struct Column<C: RotationChart> {
     /// `f_int`, `k` and `base` are those of the current configuration and element states.
     assembled: bool,
     base: Vector3<f64>,
-    x_ls: Vec<Vector3<f64>>,
+    u_ls: Vec<Vector3<f64>>,
     rot_ls: Vec<C::Coords>,
     /// Trial evaluations of the line search since construction.
     pub line_evaluations: u64,
@@ -109,8 +127,8 @@ impl<C: RotationChart> Column<C> {
         let dim = 6 * n;
         Ok(Self {
             elements: els,
-            x: x0.clone(),
-            x_c: x0.clone(),
+            u: vec![Vector3::zeros(); n + 1],
+            u_c: vec![Vector3::zeros(); n + 1],
             x0,
             rot: vec![C::identity(); n + 1],
             rot_c: vec![C::identity(); n + 1],
@@ -122,7 +140,7 @@ impl<C: RotationChart> Column<C> {
             dx: DVector::zeros(dim),
             assembled: false,
             base: Vector3::zeros(),
-            x_ls: vec![Vector3::zeros(); n + 1],
+            u_ls: vec![Vector3::zeros(); n + 1],
             rot_ls: vec![C::identity(); n + 1],
             line_evaluations: 0,
         })
@@ -141,7 +159,7 @@ impl<C: RotationChart> Column<C> {
     /// The top node's displacement from its initial position.
     pub fn top_displacement(&self) -> Vector3<f64> {
         let n = self.elements.len();
-        self.x[n] - self.x0[n]
+        self.u[n]
     }
 
     /// The top's accumulated in-plane rotation (about global y), unwrapped.
@@ -168,7 +186,8 @@ impl<C: RotationChart> Column<C> {
         let mut base = Vector3::zeros();
         for (e, (cr, basic)) in self.elements.iter_mut().enumerate() {
             let (r1, r2) = (C::matrix(&self.rot[e]), C::matrix(&self.rot[e + 1]));
-            let (v, kin) = cr.at(&self.x[e], &self.x[e + 1], &r1, &r2);
+            let (x1, x2) = (self.x0[e] + self.u[e], self.x0[e + 1] + self.u[e + 1]);
+            let (v, kin) = cr.at(&x1, &x2, &r1, &r2);
             let (qb, kb) = basic.update(&v).map_err(|failure| NewtonFailure::Element {
                 element: e,
                 failure,
@@ -202,11 +221,11 @@ impl<C: RotationChart> Column<C> {
     }
 
     fn apply_scaled(&mut self, dx: &DVector<f64>, eta: f64) {
-        let top = self.x.len() - 1;
+        let top = self.u.len() - 1;
         let before = C::matrix(&self.rot[top]);
-        for node in 1..self.x.len() {
+        for node in 1..self.u.len() {
             let o = 6 * (node - 1);
-            self.x[node] += Vector3::new(dx[o], dx[o + 1], dx[o + 2]) * eta;
+            self.u[node] += Vector3::new(dx[o], dx[o + 1], dx[o + 2]) * eta;
             let dw = Vector3::new(dx[o + 3], dx[o + 4], dx[o + 5]) * eta;
             self.rot[node] = C::retract(&self.rot[node], &dw);
         }
@@ -228,20 +247,33 @@ impl<C: RotationChart> Column<C> {
         max_iter: usize,
         line_search: bool,
     ) -> Result<(StepCount, Vector3<f64>), NewtonFailure> {
+        self.step_dynamic(f_ext, prescribed, None, tol, max_iter, line_search)
+    }
+
+    /// [`Column::step`] with inertia (a dynamic step; `None`: static).
+    pub fn step_dynamic(
+        &mut self,
+        f_ext: &DVector<f64>,
+        prescribed: Option<Prescribed>,
+        inertia: Option<Inertia<'_>>,
+        tol: f64,
+        max_iter: usize,
+        line_search: bool,
+    ) -> Result<(StepCount, Vector3<f64>), NewtonFailure> {
         let count = |c: &Self| -> (u64, u64) {
             c.elements.iter().fold((0, 0), |(i, s), (_, b)| {
                 (i + b.iterations(), s + b.subdivisions())
             })
         };
         let before = count(self);
-        let out = self.iterate(f_ext, prescribed, tol, max_iter, line_search);
+        let out = self.iterate(f_ext, prescribed, inertia, tol, max_iter, line_search);
         let after = count(self);
         match out {
             Ok((iterations, base)) => {
                 for (_, b) in &mut self.elements {
                     b.commit();
                 }
-                self.x_c.clone_from(&self.x);
+                self.u_c.clone_from(&self.u);
                 self.rot_c.clone_from(&self.rot);
                 self.top_turn_c = self.top_turn;
                 let count = StepCount {
@@ -264,7 +296,7 @@ impl<C: RotationChart> Column<C> {
         for (_, b) in &mut self.elements {
             b.revert();
         }
-        self.x.clone_from(&self.x_c);
+        self.u.clone_from(&self.u_c);
         self.rot.clone_from(&self.rot_c);
         self.top_turn = self.top_turn_c;
     }
@@ -273,6 +305,7 @@ impl<C: RotationChart> Column<C> {
         &mut self,
         f_ext: &DVector<f64>,
         prescribed: Option<Prescribed>,
+        inertia: Option<Inertia<'_>>,
         tol: f64,
         max_iter: usize,
         line_search: bool,
@@ -294,6 +327,17 @@ impl<C: RotationChart> Column<C> {
             }
             let k = self.lu.matrix_mut();
             k.copy_from(&self.k);
+            if let Some(m) = inertia {
+                for i in 0..dim {
+                    if m.mass[i] != 0.0 && i % 6 < 3 {
+                        let u = self.u[i / 6 + 1][i % 6];
+                        let a = m.c_a * (u - m.u_pred[i]);
+                        let v = m.v_pred[i] + m.c_v * a;
+                        r[i] += m.mass[i] * (a + m.a0 * v);
+                        k[(i, i)] += m.mass[i] * m.c_a * (1.0 + m.a0 * m.c_v);
+                    }
+                }
+            }
             if let Some(p) = prescribed {
                 // Move the known increment to the right side, then decouple the row.
                 for i in 0..dim {
@@ -317,12 +361,12 @@ impl<C: RotationChart> Column<C> {
             if let Some(p) = prescribed {
                 self.dx[p.dof] = dx_p;
             }
-            energy = self.dx.dot(&r).abs();
+            energy = 0.5 * self.dx.dot(&r).abs();
             if !energy.is_finite() {
                 break;
             }
             let dx = std::mem::replace(&mut self.dx, DVector::zeros(0));
-            if line_search && dx_p == 0.0 && energy > tol {
+            if line_search && inertia.is_none() && dx_p == 0.0 && energy > tol {
                 self.search_line(&dx, &r, f_ext, prescribed)?;
             } else {
                 self.apply(&dx);
@@ -345,11 +389,7 @@ impl<C: RotationChart> Column<C> {
     fn dof_value(&self, dof: usize) -> f64 {
         let node = dof / 6 + 1;
         let c = dof % 6;
-        if c < 3 {
-            self.x[node][c] - self.x0[node][c]
-        } else {
-            0.0
-        }
+        if c < 3 { self.u[node][c] } else { 0.0 }
     }
 
     /// The energy line search (the `_ls` variants): moves by `eta dx` from the current
@@ -363,12 +403,12 @@ impl<C: RotationChart> Column<C> {
         f_ext: &DVector<f64>,
         prescribed: Option<Prescribed>,
     ) -> Result<(), NewtonFailure> {
-        self.x_ls.clone_from(&self.x);
+        self.u_ls.clone_from(&self.u);
         self.rot_ls.clone_from(&self.rot);
         let turn = self.top_turn;
         let s0 = dx.dot(r0);
         let eval = |c: &mut Self, eta: f64| -> Result<f64, NewtonFailure> {
-            c.x.clone_from(&c.x_ls);
+            c.u.clone_from(&c.u_ls);
             c.rot.clone_from(&c.rot_ls);
             c.top_turn = turn;
             c.apply_scaled(dx, eta);
@@ -411,7 +451,8 @@ impl<C: RotationChart> Column<C> {
         let mut out = (0.0, 0.0);
         for (e, (cr, b)) in self.elements.iter().enumerate() {
             let (r1, r2) = (C::matrix(&self.rot[e]), C::matrix(&self.rot[e + 1]));
-            let (v, _) = cr.deformations(&self.x[e], &self.x[e + 1], &r1, &r2);
+            let (x1, x2) = (self.x0[e] + self.u[e], self.x0[e + 1] + self.u[e + 1]);
+            let (v, _) = cr.deformations(&x1, &x2, &r1, &r2);
             let (w, r) = b.energies(v[5]);
             out.0 += w;
             out.1 += r;

@@ -12,7 +12,8 @@
 //! axis); `column.rs` the assembled cantilever and its static Newton step; `elastica.rs` the
 //! exact large-deflection cantilever (Bisshopp & Drucker) and the roll-up's circle, the
 //! static scenes' references. `column_tests.rs` checks the column against the elastica and
-//! the roll-up, `rc_tests.rs` against the stored OpenSees runs of the RC column.
+//! the roll-up, `rc_tests.rs` and `pulse_tests.rs` against the stored OpenSees runs of the
+//! RC column (cyclic, and under the ground-acceleration pulse with Newmark's rule).
 //!
 //! The family is not yet in the family table (`model::families!`): its pieces are built
 //! and tested here first.
@@ -25,6 +26,8 @@ pub mod corotational;
 pub mod elastica;
 pub mod layout;
 pub mod material;
+#[cfg(test)]
+mod pulse_tests;
 pub mod quadrature;
 #[cfg(test)]
 mod rc_tests;

@@ -12,8 +12,8 @@ use super::material::{
 };
 use super::section::Section;
 
-const H: f64 = 3.0;
-const P: f64 = 750e3;
+pub(super) const H: f64 = 3.0;
+pub(super) const P: f64 = 750e3;
 const GJ: f64 = 1.0e8;
 
 /// The column's section with the `_c01` (`second = false`) or `_c02` materials: core 16 x 2
@@ -118,6 +118,27 @@ fn section(second: bool) -> Section {
     Section::Fiber(fiber_section(0.5, 0.5, &patches, &layers).unwrap())
 }
 
+/// The RC column in `elements` force-based (5 Lobatto points) or displacement-based (5
+/// Legendre points) elements.
+pub(super) fn rc_column<C: RotationChart>(
+    second: bool,
+    elements: usize,
+    force_based: bool,
+) -> Column<C> {
+    let s = section(second);
+    let h = H / elements as f64;
+    let els = (0..elements)
+        .map(|_| {
+            if force_based {
+                Basic::Force(Box::new(ForceBased::new(h, GJ, &s, 5, 1e-16, 50).unwrap()))
+            } else {
+                Basic::Disp(DispBased::new(h, GJ, &s, 5).unwrap())
+            }
+        })
+        .collect();
+    Column::new(H, els).unwrap()
+}
+
 /// The protocol's top displacement after each 0.5 mm step.
 fn protocol() -> Vec<f64> {
     let mut out = vec![];
@@ -154,18 +175,7 @@ fn run_cyclic<C: RotationChart>(
     force_based: bool,
     line_search: bool,
 ) -> Run {
-    let s = section(second);
-    let h = H / elements as f64;
-    let els = (0..elements)
-        .map(|_| {
-            if force_based {
-                Basic::Force(Box::new(ForceBased::new(h, GJ, &s, 5, 1e-16, 50).unwrap()))
-            } else {
-                Basic::Disp(DispBased::new(h, GJ, &s, 5).unwrap())
-            }
-        })
-        .collect();
-    let mut col = Column::<C>::new(H, els).unwrap();
+    let mut col: Column<C> = rc_column(second, elements, force_based);
     let mut f = DVector::zeros(col.dim());
     let tol = 1e-20;
     for k in 1..=10 {
@@ -204,7 +214,7 @@ fn run_cyclic<C: RotationChart>(
     out
 }
 
-fn reference(scene: &str) -> serde_json::Value {
+pub(super) fn reference(scene: &str) -> serde_json::Value {
     let path = format!(
         "{}/references/fiber_column/opensees/{scene}.json",
         env!("CARGO_MANIFEST_DIR")
@@ -212,7 +222,7 @@ fn reference(scene: &str) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
-fn column(r: &serde_json::Value, name: &str) -> Vec<f64> {
+pub(super) fn reference_column(r: &serde_json::Value, name: &str) -> Vec<f64> {
     r["data"][name]
         .as_array()
         .unwrap()
@@ -238,9 +248,9 @@ fn compare(scene: &str, second: bool, line_search: bool) -> Run {
         eprintln!("{scene}: step {k} failed: {e}");
     }
     // Reference rows: 0 is the state after the axial prelude, row k after step k.
-    let v_ref = column(&r, "base_shear");
-    let u_ref = column(&r, "top_displacement");
-    let a_ref = column(&r, "top_axial");
+    let v_ref = reference_column(&r, "base_shear");
+    let u_ref = reference_column(&r, "top_displacement");
+    let a_ref = reference_column(&r, "top_axial");
     let peak = v_ref.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let mut sq = 0.0;
     let mut worst = 0.0f64;
