@@ -74,14 +74,15 @@ fn charts_agree_on_the_elastica() {
 /// The roll-up with chart `C`: `n` elements, `steps` load steps of the tip moment
 /// `lambda 2 pi EI/L`; the largest tip error over the steps (units of L), the final tip's
 /// distance from the root and the final unwrapped rotation.
-fn rollup<C: RotationChart>(n: usize, steps: usize) -> (f64, f64, f64) {
+fn rollup<C: RotationChart>(n: usize, steps: usize) -> (f64, f64, f64, usize) {
     let mut col = elastic_column::<C>(n, true);
     let mut f = DVector::zeros(col.dim());
     let mut worst = 0.0f64;
+    let mut iterations = 0;
     for k in 1..=steps {
         let lambda = k as f64 / steps as f64;
         f[col.top_dof(4)] = lambda * std::f64::consts::TAU;
-        col.step(&f, None, 1e-20, 40, false).unwrap();
+        iterations += col.step(&f, None, 1e-20, 40, false).unwrap().0.iterations;
         let exact = rollup_tip(lambda);
         let u = col.top_displacement();
         let err = ((u.x - exact.across).powi(2) + (1.0 + u.z - exact.along).powi(2)).sqrt();
@@ -89,7 +90,7 @@ fn rollup<C: RotationChart>(n: usize, steps: usize) -> (f64, f64, f64) {
     }
     let u = col.top_displacement();
     let closed = (u + nalgebra::Vector3::new(0.0, 0.0, 1.0)).norm();
-    (worst, closed, col.top_turn())
+    (worst, closed, col.top_turn(), iterations)
 }
 
 // The roll-up closes the column into a circle with every chart: at lambda = 1 the tip is back
@@ -98,7 +99,8 @@ fn rollup<C: RotationChart>(n: usize, steps: usize) -> (f64, f64, f64) {
 #[test]
 fn rollup_closes_with_every_chart() {
     fn check<C: RotationChart>() {
-        let (worst, closed, turn) = rollup::<C>(20, 10);
+        let (worst, closed, turn, iterations) = rollup::<C>(20, 10);
+        eprintln!("{}: {iterations} Newton iterations in 10 steps", C::NAME);
         eprintln!(
             "{}: max tip error {worst:.3e}, closure {closed:.3e}, turn {turn}",
             C::NAME
@@ -131,4 +133,17 @@ fn disp_based_equals_force_based_when_elastic() {
         col.top_displacement()
     };
     assert!((run(true) - run(false)).norm() < 1e-12);
+}
+
+// The roll-up's largest tip error along the arc (tip_error_max) falls at order 2 with the
+// mesh (10 and 40 elements, so3): the nodes of a corotational mesh under a constant moment
+// form a regular polygon whose sides are the elements' undeformed length, a chord error of
+// O(h^2).
+#[test]
+fn rollup_tip_error_is_second_order() {
+    let (e10, ..) = rollup::<So3>(10, 10);
+    let (e40, ..) = rollup::<So3>(40, 10);
+    let order = (e10 / e40).ln() / 4f64.ln();
+    eprintln!("roll-up tip_error_max: 10 el {e10:.3e}, 40 el {e40:.3e}, order {order:.3}");
+    assert!((order - 2.0).abs() < 0.1, "order {order}");
 }
