@@ -100,6 +100,8 @@ pub struct Column<C: RotationChart> {
     k: DMatrix<f64>,
     lu: Lu,
     dx: DVector<f64>,
+    /// The residual `f_int - f_ext` of the current iteration (a buffer).
+    r: DVector<f64>,
     /// `f_int`, `k` and `base` are those of the current configuration and element states.
     assembled: bool,
     base: Vector3<f64>,
@@ -138,6 +140,7 @@ impl<C: RotationChart> Column<C> {
             k: DMatrix::zeros(dim, dim),
             lu: Lu::new(dim),
             dx: DVector::zeros(dim),
+            r: DVector::zeros(dim),
             assembled: false,
             base: Vector3::zeros(),
             u_ls: vec![Vector3::zeros(); n + 1],
@@ -318,7 +321,14 @@ impl<C: RotationChart> Column<C> {
             if !(iter == 1 && self.assembled) {
                 self.assemble()?;
             }
-            let mut r = &self.f_int - f_ext;
+            // The buffer is taken for the iteration and put back at its end; an early exit
+            // (a failure, after which the step reverts) leaves it empty, so it is remade then.
+            let mut r = std::mem::replace(&mut self.r, DVector::zeros(0));
+            if r.len() != dim {
+                r = DVector::zeros(dim);
+            }
+            r.copy_from(&self.f_int);
+            r -= f_ext;
             let mut dx_p = 0.0;
             if let Some(p) = prescribed
                 && iter == 1
@@ -372,6 +382,7 @@ impl<C: RotationChart> Column<C> {
                 self.apply(&dx);
             }
             self.dx = dx;
+            self.r = r;
             if energy <= tol && dx_p == 0.0 {
                 // Leave the element states consistent with the final configuration.
                 let base = self.assemble()?;

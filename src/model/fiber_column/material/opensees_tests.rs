@@ -72,6 +72,12 @@ fn reference_file_is_opensees_3_7_1() {
     assert_eq!(r.header.openseespy_version, "3.7.1.2");
     assert_eq!(r.header.script_sha256.len(), 64);
     assert!(r.header.regenerate.contains("generate.py"));
+    // Its provenance names the tool, the command, the independent cross-check and the claim.
+    let p = &r.provenance;
+    assert!(p.tool.contains("OpenSees 3.7.1") && p.command.contains("generate.py"));
+    assert_eq!(p.script_sha256, r.header.script_sha256);
+    assert!(p.cross_check.contains("envelope_tests.rs"));
+    assert!(p.accuracy_claim.contains("1e-6"));
     let names: Vec<_> = r.materials.iter().map(|m| m.name.as_str()).collect();
     assert_eq!(
         names,

@@ -31,10 +31,21 @@ pub(super) struct Response {
     pub tangent: Vec<f64>,
 }
 
+/// Where the reference comes from and what checks it.
+#[derive(Debug, Deserialize)]
+pub(super) struct Provenance {
+    pub tool: String,
+    pub command: String,
+    pub script_sha256: String,
+    pub cross_check: String,
+    pub accuracy_claim: String,
+}
+
 /// The whole reference file.
 #[derive(Debug, Deserialize)]
 pub(super) struct Reference {
     pub header: Header,
+    pub provenance: Provenance,
     pub materials: Vec<Response>,
 }
 
