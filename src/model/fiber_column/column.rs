@@ -76,6 +76,18 @@ pub struct Inertia<'a> {
     pub v_pred: &'a DVector<f64>,
 }
 
+/// How the Newton step moves toward equilibrium (the `newton_*` integrators' variants).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Algorithm {
+    /// Full Newton: the tangent of the current configuration every iteration.
+    Newton,
+    /// Newton with the energy line search (`search_line`).
+    LineSearch,
+    /// Krylov-accelerated Newton (Carlson & Miller): the step's first tangent, its
+    /// corrections accelerated in the subspace of the previous ones.
+    Krylov,
+}
+
 /// The counts of one converged step.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct StepCount {
@@ -248,9 +260,9 @@ impl<C: RotationChart> Column<C> {
         prescribed: Option<Prescribed>,
         tol: f64,
         max_iter: usize,
-        line_search: bool,
+        algorithm: Algorithm,
     ) -> Result<(StepCount, Vector3<f64>), NewtonFailure> {
-        self.step_dynamic(f_ext, prescribed, None, tol, max_iter, line_search)
+        self.step_dynamic(f_ext, prescribed, None, tol, max_iter, algorithm)
     }
 
     /// [`Column::step`] with inertia (a dynamic step; `None`: static).
@@ -261,7 +273,7 @@ impl<C: RotationChart> Column<C> {
         inertia: Option<Inertia<'_>>,
         tol: f64,
         max_iter: usize,
-        line_search: bool,
+        algorithm: Algorithm,
     ) -> Result<(StepCount, Vector3<f64>), NewtonFailure> {
         let count = |c: &Self| -> (u64, u64) {
             c.elements.iter().fold((0, 0), |(i, s), (_, b)| {
@@ -269,7 +281,7 @@ impl<C: RotationChart> Column<C> {
             })
         };
         let before = count(self);
-        let out = self.iterate(f_ext, prescribed, inertia, tol, max_iter, line_search);
+        let out = self.iterate(f_ext, prescribed, inertia, tol, max_iter, algorithm);
         let after = count(self);
         match out {
             Ok((iterations, base)) => {
@@ -311,8 +323,12 @@ impl<C: RotationChart> Column<C> {
         inertia: Option<Inertia<'_>>,
         tol: f64,
         max_iter: usize,
-        line_search: bool,
+        algorithm: Algorithm,
     ) -> Result<(usize, Vector3<f64>), NewtonFailure> {
+        let line_search = algorithm == Algorithm::LineSearch;
+        if algorithm == Algorithm::Krylov {
+            todo!("Krylov-accelerated Newton");
+        }
         let dim = self.dim();
         let mut energy = f64::INFINITY;
         for iter in 1..=max_iter {

@@ -4,7 +4,7 @@ use nalgebra::DVector;
 
 use super::basic::{Basic, DispBased, ForceBased};
 use super::chart::{MatrixProj, QuatProj, RotationChart, Rotvec, So3};
-use super::column::Column;
+use super::column::{Algorithm, Column};
 use super::elastica::{elastica_tip, rollup_tip};
 use super::section::{ElasticSection, Section};
 
@@ -33,7 +33,7 @@ fn elastica_error<C: RotationChart>(n: usize, alpha: f64, steps: usize) -> (f64,
     let mut iterations = 0;
     for k in 1..=steps {
         f[col.top_dof(0)] = alpha * k as f64 / steps as f64;
-        let (c, _) = col.step(&f, None, 1e-20, 30, false).unwrap();
+        let (c, _) = col.step(&f, None, 1e-20, 30, Algorithm::Newton).unwrap();
         iterations += c.iterations;
     }
     let exact = elastica_tip(alpha).unwrap();
@@ -82,7 +82,11 @@ fn rollup<C: RotationChart>(n: usize, steps: usize) -> (f64, f64, f64, usize) {
     for k in 1..=steps {
         let lambda = k as f64 / steps as f64;
         f[col.top_dof(4)] = lambda * std::f64::consts::TAU;
-        iterations += col.step(&f, None, 1e-20, 40, false).unwrap().0.iterations;
+        iterations += col
+            .step(&f, None, 1e-20, 40, Algorithm::Newton)
+            .unwrap()
+            .0
+            .iterations;
         let exact = rollup_tip(lambda);
         let u = col.top_displacement();
         let err = ((u.x - exact.across).powi(2) + (1.0 + u.z - exact.along).powi(2)).sqrt();
@@ -128,7 +132,7 @@ fn disp_based_equals_force_based_when_elastic() {
         let mut f = DVector::zeros(col.dim());
         for k in 1..=10 {
             f[col.top_dof(0)] = 2.0 * k as f64 / 10.0;
-            col.step(&f, None, 1e-20, 30, false).unwrap();
+            col.step(&f, None, 1e-20, 30, Algorithm::Newton).unwrap();
         }
         col.top_displacement()
     };

@@ -3,7 +3,7 @@
 use nalgebra::DVector;
 
 use super::chart::So3;
-use super::column::{Column, Inertia};
+use super::column::{Algorithm, Column, Inertia};
 use super::rc_tests::{H, P, rc_column, reference, reference_column};
 
 /// The damping coefficient `a0 = 2 zeta omega_1` of the OpenSees script (zeta = 0.02,
@@ -29,7 +29,7 @@ fn rc_pulse_newmark_matches_opensees() {
     let mut f = DVector::zeros(dim);
     for k in 1..=10 {
         f[col.top_dof(2)] = -P * k as f64 / 10.0;
-        col.step(&f, None, 1e-20, 50, false).unwrap();
+        col.step(&f, None, 1e-20, 50, Algorithm::Newton).unwrap();
     }
     let m = P / G0;
     let mut mass = DVector::zeros(dim);
@@ -57,7 +57,7 @@ fn rc_pulse_newmark_matches_opensees() {
             v_pred: &v_pred,
         };
         let (c, _) = col
-            .step_dynamic(&f, None, Some(inertia), 1e-20, 50, false)
+            .step_dynamic(&f, None, Some(inertia), 1e-20, 50, Algorithm::Newton)
             .unwrap_or_else(|e| panic!("step {step}: {e}"));
         iterations += c.iterations;
         let d = col.top_displacement();

@@ -4,7 +4,7 @@ use nalgebra::DVector;
 
 use super::basic::{Basic, DispBased, ForceBased};
 use super::chart::{RotationChart, So3};
-use super::column::{Column, NewtonFailure, Prescribed};
+use super::column::{Algorithm, Column, NewtonFailure, Prescribed};
 use super::layout::{Layer, Patch, fiber_section};
 use super::material::{
     Concrete01, Concrete01Params, Concrete02, Concrete02Params, Material, Steel01, Steel01Params,
@@ -180,7 +180,7 @@ fn run_cyclic<C: RotationChart>(
     let tol = 1e-20;
     for k in 1..=10 {
         f[col.top_dof(2)] = -P * k as f64 / 10.0;
-        col.step(&f, None, tol, 50, false).unwrap();
+        col.step(&f, None, tol, 50, Algorithm::Newton).unwrap();
     }
     let start = std::time::Instant::now();
     let mut out = Run {
@@ -195,8 +195,17 @@ fn run_cyclic<C: RotationChart>(
     };
     let dof = col.top_dof(0);
     for (k, u) in protocol().into_iter().enumerate() {
-        let (c, base) = match col.step(&f, Some(Prescribed { dof, value: u }), tol, 50, line_search)
-        {
+        let (c, base) = match col.step(
+            &f,
+            Some(Prescribed { dof, value: u }),
+            tol,
+            50,
+            if line_search {
+                Algorithm::LineSearch
+            } else {
+                Algorithm::Newton
+            },
+        ) {
             Ok(x) => x,
             Err(e) => {
                 out.failure = Some((k + 1, e));
