@@ -62,7 +62,15 @@ pub use schema::{RawGrid, RawShared, RawStability};
 /// The only schema version this loader reads.
 pub const SCHEMA: i64 = 1;
 /// The catalogue files compiled into the binary, sorted by name.
-const EMBEDDED: [(&str, &str); 5] = [
+const EMBEDDED: [(&str, &str); 7] = [
+    (
+        "cases/fiber_column_cyclic.toml",
+        include_str!("../../cases/fiber_column_cyclic.toml"),
+    ),
+    (
+        "cases/fiber_column_static.toml",
+        include_str!("../../cases/fiber_column_static.toml"),
+    ),
     (
         "cases/flexible_beam.toml",
         include_str!("../../cases/flexible_beam.toml"),
@@ -118,6 +126,9 @@ pub enum ReferenceKind {
     /// A closed-form solution, evaluated at the score times by `mbdbench reference` and stored
     /// under `references/` like a numerical one.
     Exact,
+    /// A stored run of another program (OpenSees), made by a script kept beside it: `mbdbench
+    /// reference` verifies it (hash, schema, model) and says how to regenerate it.
+    External,
 }
 
 /// A family's own data of a case or of a scene, held without the shared code naming its

@@ -100,6 +100,7 @@ pub fn record(
             newton_iters: 0,
             rejected: 0,
             normalizations: 0,
+            element_iters: 0,
         },
         wall_s: None,
         inputs_sha256: inputs,

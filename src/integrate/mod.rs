@@ -197,6 +197,14 @@ pub struct Stats {
     pub newton_iters: u64,
     pub rejected: u64,
     pub normalizations: u64,
+    /// Element-level iterations inside the structure's state determinations (the fiber
+    /// column's force-based elements); absent from the summary when 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub element_iters: u64,
+}
+
+fn is_zero(x: &u64) -> bool {
+    *x == 0
 }
 
 /// The counters of two runs together (a run made of segments, each its own run).
@@ -207,6 +215,7 @@ impl std::ops::AddAssign for Stats {
         self.newton_iters += b.newton_iters;
         self.rejected += b.rejected;
         self.normalizations += b.normalizations;
+        self.element_iters += b.element_iters;
     }
 }
 

@@ -2,8 +2,6 @@
 //! the `families!` list below, which declares its module and its entry in the family table
 //! (`problem::FAMILIES`, in report order); `linear_modes` and `torque_free` serve the rigid
 //! body (its stability study and exact references).
-// The fiber column's pieces, built and tested before it joins the family table below.
-pub mod fiber_column;
 pub mod linear_modes;
 pub mod torque_free;
 
@@ -22,6 +20,7 @@ macro_rules! families {
 families! {
     rigid_body,
     flexible_beam,
+    fiber_column,
     #[cfg(any(test, feature = "seam-test"))]
     spring_chain,
 }

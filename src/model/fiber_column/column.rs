@@ -473,6 +473,25 @@ impl<C: RotationChart> Column<C> {
         &self.f_int
     }
 
+    /// The largest out-of-balance force `|f_int - f_ext|` over the free unknowns (the
+    /// prescribed one, if any, left out: its residual is the reaction), recomputed by a
+    /// fresh state determination of every element at the current configuration (the
+    /// equilibrium check after convergence).
+    pub fn residual_max(
+        &mut self,
+        f_ext: &DVector<f64>,
+        prescribed: Option<usize>,
+    ) -> Result<f64, NewtonFailure> {
+        self.assemble()?;
+        let mut worst = 0.0f64;
+        for i in 0..self.dim() {
+            if prescribed != Some(i) {
+                worst = worst.max((self.f_int[i] - f_ext[i]).abs());
+            }
+        }
+        Ok(worst)
+    }
+
     /// Work done on the elements and their recoverable energy (J), summed over the column.
     pub fn energies(&self) -> (f64, f64) {
         let mut out = (0.0, 0.0);

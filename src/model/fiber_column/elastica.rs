@@ -442,49 +442,14 @@ mod tests {
         }
     }
 
-    /// Integrates (E1) with `n` classical RK4 steps from `θ(0) = 0`, `θ'(0) = kappa0`:
-    /// returns `(x, y, θ, θ')` at `s = 1`.
-    fn integrate(alpha: f64, kappa0: f64, n: usize) -> [f64; 4] {
-        let rhs = |u: [f64; 4]| {
-            let (s, c) = u[0].sin_cos();
-            [u[1], -alpha * c, c, s]
-        };
-        let h = 1.0 / n as f64;
-        // State (θ, θ', x, y).
-        let mut u = [0.0, kappa0, 0.0, 0.0];
-        let add = |u: [f64; 4], k: [f64; 4], w: f64| std::array::from_fn(|i| u[i] + w * k[i]);
-        for _ in 0..n {
-            let k1 = rhs(u);
-            let k2 = rhs(add(u, k1, 0.5 * h));
-            let k3 = rhs(add(u, k2, 0.5 * h));
-            let k4 = rhs(add(u, k3, h));
-            u = std::array::from_fn(|i| u[i] + h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]));
-        }
-        [u[2], u[3], u[0], u[1]]
-    }
-
-    // Shooting on the ODE (E1) with RK4 (bisection on the root curvature for θ'(1) = 0)
-    // gives the same tip as the elliptic solution, independently of (E2)-(E7).
+    // Shooting on the ODE (E1) with RK4 (`shooting.rs`: bisection on the root curvature for
+    // θ'(1) = 0) gives the same tip as the elliptic solution, independently of (E2)-(E7).
     #[test]
     fn agrees_with_shooting() {
-        let n = 1 << 13;
         for alpha in [0.5, 1.0, 2.0, 5.0, 10.0, 20.0] {
-            // θ'(1) < 0 at θ'(0) = 0 (θ'' < 0) and > 0 at θ'(0) = α (∫cos θ < 1).
-            let (mut lo, mut hi) = (0.0, alpha);
-            for _ in 0..100 {
-                let mid = 0.5 * (lo + hi);
-                if mid <= lo || mid >= hi {
-                    break;
-                }
-                if integrate(alpha, mid, n)[3] < 0.0 {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            let [x, y, t, _] = integrate(alpha, 0.5 * (lo + hi), n);
+            let s = super::super::shooting::shooting_tip(alpha, 0.0, 1 << 13);
             let got = tip(alpha);
-            let errs = [got.along - x, got.across - y, got.rotation - t];
+            let errs = [got.along - s.along, got.across - s.across, got.rotation - s.rotation];
             for err in errs {
                 assert!(err.abs() < 1e-12, "alpha = {alpha}: differences {errs:?}");
             }

@@ -64,6 +64,11 @@ pub fn primary_for(kind: ReferenceKind, plan: &ScenePlan) -> Result<Primary, Str
         ReferenceKind::Numerical => Ok(Primary::Gauss6 {
             dt: fine_step(&plan.setup.grid, numerical_step(&plan.setup.body)),
         }),
+        ReferenceKind::External => Err(format!(
+            "{}/{}: the rigid body computes its references; `reference = \"external\"` is \
+             for a stored run of another program",
+            plan.case, plan.scene
+        )),
         ReferenceKind::Exact => {
             let b = &plan.setup.body;
             if !b.springs.is_empty() || b.gravity.is_some() || b.pivot_com.is_some() {
@@ -184,6 +189,7 @@ fn cross_track(kind: ReferenceKind, plan: &ScenePlan) -> Result<(Track, String),
             run_track(&plan.setup, "quat_proj", "dop853", "spatial", CROSS_TOL)?,
             format!("dop853/quat_proj/spatial, tol {CROSS_TOL:e}"),
         )),
+        ReferenceKind::External => Err("no cross-check for an external reference".into()),
         ReferenceKind::Exact => {
             let h = fine_step(&plan.setup.grid, CROSS_STEP_EXACT);
             Ok((

@@ -36,7 +36,8 @@
 use super::{Uniaxial, check, trapezoid};
 
 /// Parameters of [`Concrete01`] (SI, OpenSees' names and order; compression negative).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
 pub struct Concrete01Params {
     /// Compressive strength f'_c (Pa), < 0.
     pub fpc: f64,

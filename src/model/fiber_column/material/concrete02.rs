@@ -39,7 +39,8 @@
 use super::{Uniaxial, check, trapezoid};
 
 /// Parameters of [`Concrete02`] (SI, OpenSees' names and order; compression negative).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
 pub struct Concrete02Params {
     /// Compressive strength f'_c (Pa), < 0.
     pub fpc: f64,

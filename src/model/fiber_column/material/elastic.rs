@@ -7,7 +7,8 @@
 use super::{Uniaxial, check, trapezoid};
 
 /// Parameters of [`Elastic`] (SI): `e` the Young's modulus (Pa), finite and positive.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
 pub struct ElasticParams {
     /// Young's modulus E (Pa), > 0.
     pub e: f64,

@@ -22,7 +22,8 @@ use super::{Uniaxial, check, trapezoid};
 
 /// Parameters of [`Steel01`] (SI, OpenSees' names): yield stress, initial modulus and
 /// hardening ratio.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
 pub struct Steel01Params {
     /// Yield stress f_y (Pa), > 0.
     pub fy: f64,

@@ -33,7 +33,8 @@
 use super::{Uniaxial, check, trapezoid};
 
 /// Parameters of [`Steel02`] (SI, OpenSees' names and order).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
 pub struct Steel02Params {
     /// Yield stress f_y (Pa), > 0.
     pub fy: f64,

@@ -1,0 +1,279 @@
+//! The fiber column's line in the family table: its `model` key, axes, metrics, columns and
+//! the table of its variants, each a run function monomorphised over the nodal rotation
+//! chart. `param` is the chart of the nodes' rotations (`so3`, `quat_proj`, `rotvec`,
+//! `matrix_proj`: `chart.rs`); the formulations are `force_based` (the case's element
+//! count), `force_based_fine` (`fine_elements`, the static scenes' mesh check) and the
+//! displacement-based rivals `disp_based_n1`, `_n2`, `_n4`, `_n8` (that many elements); the
+//! integrators are the static solution algorithms `newton_load` (load control),
+//! `newton_disp`, `newton_disp_ls` (with the energy line search) and `newton_disp_krylov`
+//! (Krylov-accelerated, Carlson & Miller) under displacement control, and the dynamic
+//! schemes on the pulse. Which apply to a scene follows from its loading (`problem.rs`,
+//! `na_reason`).
+use super::chart::{MatrixProj, QuatProj, RotationChart, Rotvec, So3};
+use super::column::Algorithm;
+use super::problem::FiberProblem;
+use super::run::{Form, Keep, RunOut, Setup, run_static};
+use crate::case::{Case, CaseError, Scene};
+use crate::integrate::{MethodInfo, MethodKind};
+use crate::problem::figures::{
+    Admit, Figures, FormulationGroup, Measure, Quantity, Selection, Split,
+};
+use crate::problem::{Axes, Axis, Column, Family, Metric, Problem, Variant};
+
+/// Every variant, one panel per formulation.
+const BY_FORMULATION: Selection = Selection {
+    id: "form",
+    short: "by formulation",
+    describe: "every variant that ran, one panel per formulation.",
+    admit: Admit::All,
+    legend_axes: &[Axis::Param, Axis::Integrator],
+    split: Split::Formulation,
+};
+
+const FORMS_FB: FormulationGroup = FormulationGroup {
+    id: "fb",
+    label: "force-based",
+    formulations: &["force_based", "force_based_fine"],
+};
+const FORMS_DB: FormulationGroup = FormulationGroup {
+    id: "db",
+    label: "force-based against displacement-based meshes",
+    formulations: &[
+        "force_based",
+        "disp_based_n1",
+        "disp_based_n2",
+        "disp_based_n4",
+        "disp_based_n8",
+    ],
+};
+
+const FIGURES: Figures = Figures {
+    key_text: "How to read the plots: one panel per formulation, colour = rotation chart or \
+        solution algorithm. Static scenes step the load factor t (0 to 1), cyclic scenes the \
+        protocol's 0.5 mm increments, the pulse real time. Marks in a red band at the top of \
+        a plot are runs that failed (a typed newton_failure). Log axes are labelled at powers \
+        of ten (1e-6 = 10^-6).",
+    work_precision: &[BY_FORMULATION],
+    convergence: &[BY_FORMULATION],
+    timeseries: &[
+        (
+            Quantity::Track {
+                column: "top_displacement",
+                reference: "top_displacement_reference",
+                id: "top",
+                what: "The top's displacement across the axis (m) at the score times, \
+                    against the reference (black): the exact elastica or circle, or \
+                    OpenSees' run of the same column.",
+                y_label: "u_top (m)",
+                groups: &[FORMS_FB, FORMS_DB],
+            },
+            BY_FORMULATION,
+        ),
+        (
+            Quantity::Track {
+                column: "base_shear",
+                reference: "base_shear_reference",
+                id: "shear",
+                what: "The base shear (N) at the score times against OpenSees' run of the \
+                    same column (black); plotted against the top displacement this is the \
+                    hysteresis loop.",
+                y_label: "V (N)",
+                groups: &[FORMS_DB],
+            },
+            BY_FORMULATION,
+        ),
+    ],
+    across_scenes: &[(BY_FORMULATION, Measure::Primary)],
+    chart_group: None,
+    param_groups: &[],
+    line_styles: "every line solid (one formulation per panel)",
+    draw_failed: false,
+};
+
+const fn metric(name: &'static str, unit: &'static str, reference_error: bool) -> Metric {
+    Metric {
+        name,
+        unit,
+        reference_error,
+        higher_is_better: false,
+    }
+}
+
+const fn column(name: &'static str, unit: &'static str) -> Column {
+    Column {
+        name,
+        width: 1,
+        unit,
+    }
+}
+
+/// The rotation charts, in report order.
+pub const PARAMS: &[&str] = &["so3", "quat_proj", "rotvec", "matrix_proj"];
+/// The formulations, in report order.
+pub const FORMULATIONS: &[&str] = &[
+    "force_based",
+    "force_based_fine",
+    "disp_based_n1",
+    "disp_based_n2",
+    "disp_based_n4",
+    "disp_based_n8",
+];
+/// The static solution algorithms, in report order.
+pub const STATIC_INTEGRATORS: &[&str] = &[
+    "newton_load",
+    "newton_disp",
+    "newton_disp_ls",
+    "newton_disp_krylov",
+];
+
+/// The fiber-column family.
+pub static FAMILY: Family = Family {
+    model: "fiber_column",
+    axes: Axes {
+        params: PARAMS,
+        integrators: STATIC_INTEGRATORS,
+        formulations: FORMULATIONS,
+    },
+    metrics: &[
+        metric("tip_error", "1", true),
+        metric("tip_error_max", "1", true),
+        metric("base_shear_error_rms", "1", true),
+        metric("base_shear_error_max", "1", true),
+        metric("dissipated_energy_error", "1", true),
+        metric("equilibrium_residual_max", "1", false),
+    ],
+    columns: &[
+        column("top_displacement", "m"),
+        column("top_axial", "m"),
+        column("top_rotation", "rad"),
+        column("base_shear", "N"),
+        column("axial_force", "N"),
+        column("energy_kinetic", "J"),
+        column("energy_strain", "J"),
+        column("energy_dissipated", "J"),
+        column("work_input", "J"),
+    ],
+    variants,
+    static_na_reason,
+    load: super::case::load,
+    inputs: super::case::inputs,
+    compile,
+    figures: &FIGURES,
+};
+
+fn static_na_reason(_param: &str, integrator: &str, formulation: &str) -> String {
+    if integrator == "newton_load" && formulation.starts_with("disp_based") {
+        "newton_load runs the elastic scenes, where a displacement-based element with an \
+         elastic section equals the force-based one (tested); the rival meshes run the \
+         cyclic scenes"
+            .into()
+    } else if integrator != "newton_load" && formulation == "force_based_fine" {
+        "force_based_fine is the static scenes' mesh check".into()
+    } else if integrator.starts_with("newton_disp_") && formulation.starts_with("disp_based") {
+        format!(
+            "{integrator} is compared with newton_disp on force_based, the formulation whose \
+             element iterations meet the c02 cycling step; the rival meshes run newton_disp"
+        )
+    } else {
+        "not registered".into()
+    }
+}
+
+/// A monomorphised run.
+pub type RunFn = fn(&Setup, f64, Keep) -> Result<RunOut, String>;
+
+/// The facts of a static solution algorithm: implicit, order 2 by convention (the step
+/// ladders' class; a static path has no time-discretisation order, and its error against
+/// the reference does not fall with the load step), structural.
+fn info(name: &'static str) -> MethodInfo {
+    MethodInfo {
+        name,
+        order: 2,
+        stages: 1,
+        implicit: true,
+        symplectic: false,
+        lie_group: false,
+        energy_conserving: false,
+        adaptive: false,
+        kind: MethodKind::Structural,
+        twin_of: None,
+    }
+}
+
+fn algorithm(integrator: &str) -> Algorithm {
+    match integrator {
+        "newton_disp_ls" => Algorithm::LineSearch,
+        "newton_disp_krylov" => Algorithm::Krylov,
+        _ => Algorithm::Newton,
+    }
+}
+
+fn form(formulation: &str) -> Form {
+    match formulation {
+        "force_based_fine" => Form::ForceBasedFine,
+        "disp_based_n1" => Form::DispBased(1),
+        "disp_based_n2" => Form::DispBased(2),
+        "disp_based_n4" => Form::DispBased(4),
+        "disp_based_n8" => Form::DispBased(8),
+        _ => Form::ForceBased,
+    }
+}
+
+/// One row per static `(integrator, formulation)` on chart `C`.
+macro_rules! static_rows {
+    ($rows:ident, $C:ty, $int:literal, [$($form:literal),*]) => {
+        $(
+            $rows.push((<$C>::NAME, $int, $form, |s, dt, k| {
+                run_static::<$C>(s, form($form), algorithm($int), dt, k)
+            }));
+        )*
+    };
+}
+
+macro_rules! chart_rows {
+    ($rows:ident, $C:ty) => {
+        static_rows!($rows, $C, "newton_load", ["force_based", "force_based_fine"]);
+        static_rows!($rows, $C, "newton_disp", ["force_based", "disp_based_n1",
+            "disp_based_n2", "disp_based_n4", "disp_based_n8"]);
+        // The accelerated algorithms are compared where they matter: the force-based
+        // element's path through the c02 cycling step.
+        static_rows!($rows, $C, "newton_disp_ls", ["force_based"]);
+        static_rows!($rows, $C, "newton_disp_krylov", ["force_based"]);
+    };
+}
+
+/// The family's table: the variant and its run function.
+pub fn table() -> &'static [(Variant, RunFn)] {
+    static TABLE: std::sync::OnceLock<Vec<(Variant, RunFn)>> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        let mut rows: Vec<(&'static str, &'static str, &'static str, RunFn)> = vec![];
+        chart_rows!(rows, So3);
+        chart_rows!(rows, QuatProj);
+        chart_rows!(rows, Rotvec);
+        chart_rows!(rows, MatrixProj);
+        rows.into_iter()
+            .enumerate()
+            .map(|(index, (param, integrator, formulation, run))| {
+                (
+                    Variant {
+                        param,
+                        integrator,
+                        formulation,
+                        info: info(integrator),
+                        index,
+                    },
+                    run,
+                )
+            })
+            .collect()
+    })
+}
+
+fn variants() -> &'static [Variant] {
+    static V: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
+    V.get_or_init(|| table().iter().map(|(v, _)| *v).collect())
+}
+
+fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {
+    Ok(Box::new(FiberProblem::new(case, scene)?))
+}

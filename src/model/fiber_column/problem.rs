@@ -1,0 +1,553 @@
+//! One compiled fiber-column scene behind the `Problem` seam: the setup, the ladders, which
+//! variants apply to its loading, its reference (`reference.rs`: exact for the static
+//! scenes, OpenSees' run for the cyclic and dynamic ones) and the scores.
+//!
+//! Scores (cases/README.md, "fiber_column"), each relative so that one bound reads the
+//! same on every scene:
+//! - `tip_error`: `|tip - exact| / L` at the end of a static scene; `tip_error_max` its
+//!   largest value over the score times (the roll-up's arc);
+//! - `base_shear_error_rms` and `base_shear_error_max` over the score times, relative to
+//!   the reference's peak `|V|`;
+//! - `dissipated_energy_error`: `|W - W_ref| / |W_ref|` with `W = integral of V du + N dw`
+//!   by the trapezoid rule on the score grid, the same way from both tracks;
+//! - `equilibrium_residual_max`: the equilibrium check's largest out-of-balance force over
+//!   the score times (`run.rs`) relative to the run's peak applied load.
+//!
+//! A metric that does not apply to the scene's kind is null with the reason.
+use std::path::Path;
+
+use super::case::{ColumnCase, ColumnScene, Loading};
+use super::elastica::{elastica_tip, rollup_tip};
+use super::family::{FAMILY, table};
+use super::reference::{self as fref, CrossCheck, ExactReference, External, Provenance, Track};
+use super::run::{ColumnObs, Keep, RunOut, Setup};
+use super::shooting::shooting_tip;
+use crate::case::{Case, CaseError, Scene};
+use crate::integrate::MethodInfo;
+use crate::metrics::Scores;
+use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
+use crate::reference;
+use crate::run::Grid;
+use crate::suite::Ladders;
+use crate::summary::{self, Series};
+
+/// The attached reference.
+#[derive(Debug, Clone)]
+enum Attached {
+    Exact(ExactReference, String),
+    External(Box<External>),
+}
+
+/// A fiber-column scene with its reference (once attached).
+#[derive(Debug, Clone)]
+pub struct FiberProblem {
+    case: String,
+    scene: String,
+    inputs_sha256: String,
+    primary_metric: String,
+    setup: Setup,
+    ladders: Ladders,
+    quick: Ladders,
+    reference: Option<Attached>,
+}
+
+const STATIC_METRICS: [&str; 2] = ["tip_error", "tip_error_max"];
+const FORCE_METRICS: [&str; 3] = [
+    "base_shear_error_rms",
+    "base_shear_error_max",
+    "dissipated_energy_error",
+];
+
+impl FiberProblem {
+    pub fn new(case: &Case, scene: &Scene) -> Result<Self, CaseError> {
+        let (Some(c), Some(s)) = (
+            case.physics::<ColumnCase>(),
+            scene.physics::<ColumnScene>(),
+        ) else {
+            return Err(CaseError {
+                file: case.file.clone(),
+                key: "model".into(),
+                message: "not a fiber-column case".into(),
+            });
+        };
+        Ok(FiberProblem {
+            case: case.name.clone(),
+            scene: scene.name.clone(),
+            inputs_sha256: crate::case::inputs_sha256(case, scene),
+            primary_metric: case.primary_metric.clone(),
+            setup: Setup {
+                case: c.clone(),
+                scene: s.clone(),
+                grid: Grid {
+                    t_end: scene.t_end,
+                    sample_every: scene.sample_every,
+                    score_every: scene.score_every,
+                },
+                max_steps: case.max_steps,
+            },
+            ladders: crate::plan::ladders(&scene.ladders),
+            quick: crate::plan::ladders(&scene.quick),
+            reference: None,
+        })
+    }
+
+    fn loading(&self) -> &Loading {
+        &self.setup.scene.loading
+    }
+
+    /// The exact tip (m, rad) at load factor `t`, by the closed form and by shooting.
+    fn exact_at(&self, t: f64) -> Result<([f64; 3], [f64; 3]), String> {
+        let l = self.setup.case.height;
+        let ei = self.setup.case.elastic.ok_or("an exact tip needs an elastic section")?.1;
+        let (tip, shot) = match *self.loading() {
+            Loading::TipForce(f) => {
+                let alpha = t * f * l * l / ei;
+                (elastica_tip(alpha)?, shooting_tip(alpha, 0.0, 1 << 13))
+            }
+            Loading::TipMoment(m) => {
+                let k = t * m * l / ei;
+                (
+                    rollup_tip(k / std::f64::consts::TAU),
+                    shooting_tip(0.0, k, 1 << 13),
+                )
+            }
+            _ => return Err("only a static scene has an exact reference".into()),
+        };
+        let d = |e: &super::elastica::ElasticaTip| {
+            [e.across * l, (e.along - 1.0) * l, e.rotation]
+        };
+        Ok((d(&tip), d(&shot)))
+    }
+
+    /// The model the OpenSees reference must have been made of.
+    fn model_check(&self) -> fref::ModelCheck {
+        let mut m: fref::ModelCheck = vec![("H", self.setup.case.height, "column.height")];
+        match *self.loading() {
+            Loading::Cyclic { axial, .. } => m.push(("P", axial, "load.axial")),
+            Loading::Pulse {
+                axial, mass, a0, ..
+            } => {
+                m.push(("P", axial, "load.axial"));
+                m.push(("mass", mass, "load.pulse.mass"));
+                m.push(("damping.a0", a0, "load.pulse.a0"));
+            }
+            _ => {}
+        }
+        m
+    }
+
+    fn external(&self, root: &Path) -> Result<External, String> {
+        let g = &self.setup.grid;
+        fref::load_external(
+            root,
+            &self.scene,
+            g.t_end,
+            g.score_every,
+            &self.model_check(),
+        )
+    }
+
+    /// The exact track at the score times and the shooting cross-check's largest
+    /// difference.
+    fn exact_track(&self) -> Result<(Track, f64), String> {
+        let g = &self.setup.grid;
+        let n = crate::case::steps_dividing(g.t_end, g.score_every)
+            .ok_or("score_every does not divide t_end")?;
+        let mut track = Track::default();
+        let mut worst = 0.0f64;
+        for k in 0..=n {
+            let t = k as f64 * g.score_every;
+            let (e, s) = self.exact_at(t)?;
+            track.t.push(t);
+            for i in 0..3 {
+                track.columns[i].push(e[i]);
+                worst = worst.max((e[i] - s[i]).abs());
+            }
+        }
+        Ok((track, worst))
+    }
+
+    fn reference_track(&self) -> Option<Track> {
+        match self.reference.as_ref()? {
+            Attached::Exact(r, _) => Some(r.track()),
+            Attached::External(x) => Some(x.track.clone()),
+        }
+    }
+}
+
+/// `sum of V du + N dw` by the trapezoid rule over a track.
+fn input_work(u: &[f64], w: &[f64], v: &[f64], n: &[f64]) -> f64 {
+    (1..u.len())
+        .map(|k| {
+            0.5 * (v[k] + v[k - 1]) * (u[k] - u[k - 1]) + 0.5 * (n[k] + n[k - 1]) * (w[k] - w[k - 1])
+        })
+        .sum()
+}
+
+impl Problem for FiberProblem {
+    fn family(&self) -> &'static Family {
+        &FAMILY
+    }
+    fn case(&self) -> &str {
+        &self.case
+    }
+    fn scene(&self) -> &str {
+        &self.scene
+    }
+    fn inputs_sha256(&self) -> &str {
+        &self.inputs_sha256
+    }
+    fn primary_metric(&self) -> &str {
+        &self.primary_metric
+    }
+    fn t_end(&self) -> f64 {
+        self.setup.grid.t_end
+    }
+    fn set_t_end(&mut self, t_end: f64) {
+        self.setup.grid.t_end = t_end;
+        self.reference = None;
+    }
+    fn score_every(&self) -> f64 {
+        self.setup.grid.score_every
+    }
+    fn sample_every(&self) -> f64 {
+        self.setup.grid.sample_every
+    }
+    fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64] {
+        if quick { &self.quick } else { &self.ladders }.for_method(info)
+    }
+    fn na_reason(&self, v: &Variant) -> Option<String> {
+        let kind = self.loading().kind();
+        let int = v.integrator;
+        match kind {
+            "static" if int != "newton_load" => {
+                return Some(format!(
+                    "{int} is for the cyclic scenes' displacement control; a static scene \
+                     steps its load with newton_load"
+                ));
+            }
+            "cyclic" if !int.starts_with("newton_disp") => {
+                return Some(format!(
+                    "{int} is for load control; a cyclic scene prescribes the top's \
+                     displacement (newton_disp*)"
+                ));
+            }
+            _ => {}
+        }
+        if v.formulation == "force_based_fine" && self.setup.case.numerics.fine_elements.is_none()
+        {
+            return Some("the case gives no numerics.fine_elements".into());
+        }
+        if kind == "cyclic"
+            && v.param != "so3"
+            && (v.formulation != "force_based" || int != "newton_disp")
+        {
+            return Some(
+                "the chart axis is compared on force_based with newton_disp; the other \
+                 algorithms and the rival meshes run on so3 (at the top's rotation of at \
+                 most 0.045 rad the charts converge to the same equilibrium)"
+                    .into(),
+            );
+        }
+        None
+    }
+    fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
+        if matches!(self.loading(), Loading::TipForce(_) | Loading::TipMoment(_)) {
+            let (r, sha): (ExactReference, String) =
+                reference::load_as(root, &self.case, &self.scene, &self.inputs_sha256)
+                    .map_err(|e| e.to_string())?;
+            let g = &self.setup.grid;
+            reference::check_grid(&r.t, g.t_end, g.score_every).map_err(|m| {
+                reference::grid_error(root, &self.case, &self.scene, m).to_string()
+            })?;
+            self.reference = Some(Attached::Exact(r, sha));
+        } else {
+            self.reference = Some(Attached::External(Box::new(self.external(root)?)));
+        }
+        Ok(())
+    }
+    fn reference_sha256(&self) -> Option<&str> {
+        match self.reference.as_ref()? {
+            Attached::Exact(_, sha) => Some(sha),
+            Attached::External(x) => Some(&x.sha256),
+        }
+    }
+    fn accuracy_claim(&self, metric: &str) -> Option<f64> {
+        match self.reference.as_ref()? {
+            Attached::Exact(r, _) if STATIC_METRICS.contains(&metric) => {
+                Some(r.accuracy_claim / self.setup.case.height)
+            }
+            Attached::External(x) if FORCE_METRICS.contains(&metric) => {
+                x.claim.get("base_shear").copied()
+            }
+            _ => None,
+        }
+    }
+    fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String> {
+        let Stepping::Dt(dt) = stepping else {
+            return Err("the fiber column's methods take a fixed step".into());
+        };
+        let keep = match want {
+            Want::Timing => Keep::Final,
+            Want::Scored | Want::Trajectory => Keep::Samples,
+        };
+        let out = (table()[v.index].1)(&self.setup, dt, keep)?;
+        let mut o = Outcome {
+            stats: out.stats,
+            failure: out.failure.clone(),
+            ..Outcome::default()
+        };
+        match want {
+            Want::Timing => {}
+            Want::Scored => {
+                let (scores, series) = self.score(&out);
+                o.scores = scores;
+                o.series = Some(series);
+            }
+            Want::Trajectory => o.columns = Some(columns(&out.samples)),
+        }
+        Ok(o)
+    }
+    fn make_reference(&self, root: &Path) -> Result<String, String> {
+        if !matches!(self.loading(), Loading::TipForce(_) | Loading::TipMoment(_)) {
+            let x = self.external(root)?;
+            return Ok(format!(
+                "{}: external reference (OpenSees {}), not made by mbdbench; its SHA-256, \
+                 schema, columns, score times and model check out; regenerate with: {}",
+                x.path.display(),
+                x.opensees,
+                x.regenerate
+            ));
+        }
+        let (track, diff) = self.exact_track()?;
+        let method = match self.loading() {
+            Loading::TipForce(_) => "the elastica (Bisshopp-Drucker, Carlson's forms)",
+            _ => "the roll-up's circle",
+        };
+        let claim = diff.max(f64::EPSILON * self.setup.case.height);
+        let r = ExactReference {
+            case: self.case.clone(),
+            scene: self.scene.clone(),
+            t: track.t.clone(),
+            top_displacement: track.columns[0].clone(),
+            top_axial: track.columns[1].clone(),
+            top_rotation: track.columns[2].clone(),
+            provenance: Provenance {
+                command: format!(
+                    "mbdbench reference --case {} --scene {}",
+                    self.case, self.scene
+                ),
+                method: method.into(),
+                git_commit: summary::git_commit().into(),
+                created_utc: summary::now_utc(),
+                rustc: summary::rustc_version().into(),
+                cross_check: CrossCheck {
+                    method: "shooting on the equilibrium ODE, RK4 with 8192 steps".into(),
+                    max_diff: diff,
+                },
+            },
+            accuracy_claim: claim,
+            inputs_sha256: self.inputs_sha256.clone(),
+        };
+        let path = reference::save_as(root, &self.case, &self.scene, &r)
+            .map_err(|e| e.to_string())?;
+        Ok(format!(
+            "{}: {method}; cross-check by shooting: {diff:.2e}; claim {claim:.2e}",
+            path.display()
+        ))
+    }
+    fn check_reference(&self, root: &Path) -> Result<(bool, String), String> {
+        if !matches!(self.loading(), Loading::TipForce(_) | Loading::TipMoment(_)) {
+            return Ok(match self.external(root) {
+                Ok(x) => (
+                    true,
+                    format!(
+                        "{}/{}: external OpenSees reference {}: SHA-256 as in MANIFEST.json, \
+                         schema, columns, score times and model as the case's; regenerate \
+                         with: {}",
+                        self.case,
+                        self.scene,
+                        x.path.display(),
+                        x.regenerate
+                    ),
+                ),
+                Err(e) => (false, format!("{}/{}: {e}", self.case, self.scene)),
+            });
+        }
+        let (stored, _): (ExactReference, _) =
+            reference::load_as(root, &self.case, &self.scene, &self.inputs_sha256)
+                .map_err(|e| e.to_string())?;
+        let (now, _) = self.exact_track()?;
+        let old = stored.track();
+        let mut d = 0.0f64;
+        for i in 0..3 {
+            for (a, b) in now.columns[i].iter().zip(&old.columns[i]) {
+                d = d.max((a - b).abs());
+            }
+        }
+        let ok = d <= stored.accuracy_claim && now.t.len() == old.t.len();
+        Ok((
+            ok,
+            format!(
+                "{}/{}: recomputed vs stored: {d:.2e} (claim {:.2e})",
+                self.case, self.scene, stored.accuracy_claim
+            ),
+        ))
+    }
+}
+
+/// The samples as the family's columns.
+fn columns(s: &[ColumnObs]) -> Columns {
+    let col = |f: fn(&ColumnObs) -> f64| s.iter().map(f).collect::<Vec<f64>>();
+    Columns {
+        t: col(|o| o.t),
+        columns: vec![
+            ("top_displacement", 1, col(|o| o.top_displacement)),
+            ("top_axial", 1, col(|o| o.top_axial)),
+            ("top_rotation", 1, col(|o| o.top_rotation)),
+            ("base_shear", 1, col(|o| o.base_shear)),
+            ("axial_force", 1, col(|o| o.axial_force)),
+            ("energy_kinetic", 1, col(|o| o.energy_kinetic)),
+            ("energy_strain", 1, col(|o| o.energy_strain)),
+            ("energy_dissipated", 1, col(|o| o.energy_dissipated)),
+            ("work_input", 1, col(|o| o.work_input)),
+        ],
+    }
+}
+
+impl FiberProblem {
+    /// The scores and series of a run.
+    fn score(&self, out: &RunOut) -> (Scores, Series) {
+        let mut s = Scores::default();
+        let g = &self.setup.grid;
+        let per_score = (g.score_every / g.sample_every).round().max(1.0) as usize;
+        let scored: Vec<&ColumnObs> = out.samples.iter().step_by(per_score).collect();
+        let failed = out
+            .failure
+            .as_ref()
+            .map(|f| format!("run failed ({}) at t = {}", f.kind.name(), f.t));
+        let kind = self.loading().kind();
+        // The equilibrium check.
+        match &failed {
+            Some(why) => s.null("equilibrium_residual_max", why.clone()),
+            None => {
+                let r = scored
+                    .iter()
+                    .filter_map(|o| o.equilibrium_residual)
+                    .fold(0.0f64, f64::max);
+                s.set(
+                    "equilibrium_residual_max",
+                    r / out.peak_load.max(f64::MIN_POSITIVE),
+                );
+            }
+        }
+        let reference = self.reference_track();
+        let mut primary_error = None;
+        let mut tracks = std::collections::BTreeMap::new();
+        let l = self.setup.case.height;
+        let mismatch = reference.as_ref().and_then(|r| {
+            (r.t.len() != scored.len()).then(|| {
+                format!(
+                    "run has {} score points, reference {}",
+                    scored.len(),
+                    r.t.len()
+                )
+            })
+        });
+        let why = failed.clone().or(mismatch).or_else(|| {
+            reference
+                .is_none()
+                .then(|| "no reference attached".to_string())
+        });
+        let not_static = format!("a {kind} scene has no exact tip");
+        let not_forces = "a static scene's exact reference has no forces".to_string();
+        match (kind, &why, &reference) {
+            ("static", None, Some(r)) => {
+                let e: Vec<f64> = scored
+                    .iter()
+                    .enumerate()
+                    .map(|(k, o)| {
+                        (o.top_displacement - r.columns[0][k])
+                            .hypot(o.top_axial - r.columns[1][k])
+                            / l
+                    })
+                    .collect();
+                s.set("tip_error", *e.last().unwrap_or(&f64::NAN));
+                s.set("tip_error_max", e.iter().copied().fold(0.0, f64::max));
+                primary_error = Some(e);
+            }
+            (_, None, Some(r)) => {
+                let v_ref = r.column("base_shear");
+                let peak = v_ref.iter().fold(0.0f64, |p, x| p.max(x.abs()));
+                let d: Vec<f64> = scored
+                    .iter()
+                    .zip(v_ref)
+                    .map(|(o, x)| (o.base_shear - x).abs() / peak)
+                    .collect();
+                let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt();
+                s.set("base_shear_error_rms", rms);
+                s.set("base_shear_error_max", d.iter().copied().fold(0.0, f64::max));
+                let col = |f: fn(&ColumnObs) -> f64| scored.iter().map(|o| f(o)).collect::<Vec<_>>();
+                let w = input_work(
+                    &col(|o| o.top_displacement),
+                    &col(|o| o.top_axial),
+                    &col(|o| o.base_shear),
+                    &col(|o| o.axial_force),
+                );
+                let w_ref = input_work(
+                    r.column("top_displacement"),
+                    r.column("top_axial"),
+                    v_ref,
+                    r.column("axial_force"),
+                );
+                s.set("dissipated_energy_error", ((w - w_ref) / w_ref).abs());
+                if self.primary_metric.starts_with("base_shear") {
+                    primary_error = Some(d);
+                }
+                tracks.insert(
+                    "base_shear_reference".to_string(),
+                    v_ref.iter().map(|x| Some(*x)).collect(),
+                );
+            }
+            _ => {}
+        }
+        let why = why.unwrap_or_default();
+        for m in STATIC_METRICS {
+            if s.values.get(m).is_none() {
+                s.null(m, if kind == "static" { why.clone() } else { not_static.clone() });
+            }
+        }
+        for m in FORCE_METRICS {
+            if s.values.get(m).is_none() {
+                s.null(m, if kind == "static" { not_forces.clone() } else { why.clone() });
+            }
+        }
+        if let Some(r) = &reference {
+            tracks.insert(
+                "top_displacement_reference".to_string(),
+                r.columns[0].iter().map(|x| Some(*x)).collect(),
+            );
+        }
+        tracks.insert(
+            "top_displacement".to_string(),
+            scored.iter().map(|o| Some(o.top_displacement)).collect(),
+        );
+        tracks.insert(
+            "base_shear".to_string(),
+            scored.iter().map(|o| Some(o.base_shear)).collect(),
+        );
+        let series = Series {
+            t: scored.iter().map(|o| o.t).collect(),
+            energy: scored
+                .iter()
+                .map(|o| o.energy_kinetic + o.energy_strain + o.energy_dissipated - o.work_input)
+                .collect(),
+            constraint: vec![None; scored.len()],
+            conditioning: vec![f64::NAN; scored.len()],
+            primary_error,
+            primary_metric: self.primary_metric.clone(),
+            tracks,
+        };
+        (s, series)
+    }
+}

@@ -1,0 +1,349 @@
+//! One run of a fiber-column scene: the column of a formulation built from the case
+//! (`force_based` with the case's element count, `force_based_fine`, `disp_based_nN`), its
+//! prelude (the axial load in `axial_steps` load steps, before `t = 0`, documented in
+//! cases/README.md) and the stepping of its loading with one solution algorithm, observed at
+//! the sample times.
+//!
+//! Pseudo-time: a static scene's `t` is the load factor (the tip load `t F` or `t M`), a
+//! cyclic scene's the protocol's increment count (the top moves `increment` per unit of
+//! `t`), a dynamic scene's real time. A step `dt` must divide the sample spacing (and, for
+//! a cyclic scene, be a whole number of increments landing on every reversal).
+//!
+//! Energies along the run (J), one quadrature for all: `energy_strain` the elements'
+//! recoverable energy and `energy_dissipated` the elements' work minus it (the fibers'
+//! work by the trapezoid rule on their stress-strain paths, `material/`), `work_input` the
+//! work of the applied loads by the trapezoid rule on the steps: the tip load against the
+//! tip's displacement or rotation, and for a cyclic scene `V du + N dw` (base shear against
+//! the top's lateral displacement, axial force against its axial one), the axial prelude's
+//! work included (the elements' work includes it).
+//! `equilibrium_residual` (at score times, when asked) is the largest out-of-balance force
+//! after a fresh state determination of every element at the converged configuration.
+//!
+//! Where it fails: a load step past the column's limit point (load control), an element
+//! that does not converge even with its increment cut 64 times, or a Newton iteration
+//! limit: each ends the run with a typed `newton_failure` at the step's `t`.
+use nalgebra::DVector;
+
+use super::basic::{Basic, DispBased, ForceBased};
+use super::case::{ColumnCase, ColumnScene, Loading};
+use super::chart::RotationChart;
+use super::column::{Algorithm, Column, NewtonFailure, Prescribed, StepCount};
+use crate::case::steps_dividing;
+use crate::integrate::{Failure, FailureKind, Stats};
+use crate::run::Grid;
+
+/// What a run function needs.
+#[derive(Debug, Clone)]
+pub struct Setup {
+    pub case: ColumnCase,
+    pub scene: ColumnScene,
+    pub grid: Grid,
+    pub max_steps: u64,
+}
+
+/// One observation of the column (SI units; energies in J).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ColumnObs {
+    pub t: f64,
+    /// The top's displacement across the axis (global x, the bending plane), m.
+    pub top_displacement: f64,
+    /// The top's displacement along the axis (global z, negative when shortening), m.
+    pub top_axial: f64,
+    /// The top's unwrapped in-plane rotation (about global y), rad.
+    pub top_rotation: f64,
+    /// Minus the support's horizontal reaction, N.
+    pub base_shear: f64,
+    /// Minus the support's vertical reaction (compression negative), N.
+    pub axial_force: f64,
+    pub energy_kinetic: f64,
+    pub energy_strain: f64,
+    pub energy_dissipated: f64,
+    pub work_input: f64,
+    /// The equilibrium check's largest out-of-balance force (N or N m), when made.
+    pub equilibrium_residual: Option<f64>,
+}
+
+/// A formulation: the element kind and count.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Form {
+    /// Force-based elements: the case's `elements` (`Fine`: `fine_elements`).
+    ForceBased,
+    ForceBasedFine,
+    /// `n` displacement-based elements.
+    DispBased(usize),
+}
+
+/// What a run keeps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Keep {
+    /// The final observation only (the timing pass).
+    Final,
+    /// Every sample, and the equilibrium check at the score times.
+    Samples,
+}
+
+/// A run's result.
+#[derive(Debug, Clone, Default)]
+pub struct RunOut {
+    pub stats: Stats,
+    pub failure: Option<Failure>,
+    pub samples: Vec<ColumnObs>,
+    /// The largest applied load over the run (N or N m): the tip load, the axial load, the
+    /// prescribed displacement's reaction.
+    pub peak_load: f64,
+}
+
+/// The column of a formulation (errors name the case key at fault).
+pub fn build<C: RotationChart>(s: &Setup, form: Form) -> Result<Column<C>, String> {
+    let n = &s.case.numerics;
+    let (count, force) = match form {
+        Form::ForceBased => (n.elements, true),
+        Form::ForceBasedFine => (
+            n.fine_elements
+                .ok_or("force_based_fine needs numerics.fine_elements")?,
+            true,
+        ),
+        Form::DispBased(k) => (k, false),
+    };
+    let h = s.case.height / count as f64;
+    let section = &s.scene.section;
+    let mut els = Vec::with_capacity(count);
+    for _ in 0..count {
+        els.push(if force {
+            Basic::Force(Box::new(ForceBased::new(
+                h,
+                s.case.gj,
+                section,
+                n.points,
+                n.element_tol,
+                n.element_max_iter,
+            )?))
+        } else {
+            Basic::Disp(DispBased::new(h, s.case.gj, section, n.points)?)
+        });
+    }
+    Column::new(s.case.height, els)
+}
+
+fn failure(t: f64, e: NewtonFailure) -> Failure {
+    Failure::new(FailureKind::NewtonFailure, t, e.to_string())
+}
+
+/// The run's bookkeeping: counters, the input work and the samples.
+struct Log {
+    stats: Stats,
+    work: f64,
+    last: (f64, f64, f64, f64),
+    samples: Vec<ColumnObs>,
+    peak_load: f64,
+    keep: Keep,
+}
+
+impl Log {
+    fn count(&mut self, c: StepCount) {
+        self.stats.steps += 1;
+        self.stats.newton_iters += c.iterations as u64;
+        // A state determination per iteration plus the final one of the step.
+        self.stats.rhs_evals += c.iterations as u64 + 1;
+        self.stats.element_iters += c.element_iterations;
+    }
+
+    /// The observation of the column now.
+    fn observe<C: RotationChart>(
+        &self,
+        col: &Column<C>,
+        t: f64,
+        base: nalgebra::Vector3<f64>,
+    ) -> ColumnObs {
+        let d = col.top_displacement();
+        let (work, recoverable) = col.energies();
+        ColumnObs {
+            t,
+            top_displacement: d.x,
+            top_axial: d.z,
+            top_rotation: col.top_turn(),
+            base_shear: -base.x,
+            axial_force: -base.z,
+            energy_kinetic: 0.0,
+            energy_strain: recoverable,
+            energy_dissipated: work - recoverable,
+            work_input: self.work,
+            equilibrium_residual: None,
+        }
+    }
+}
+
+/// Runs a static or cyclic scene with `algorithm` at step `dt`.
+pub fn run_static<C: RotationChart>(
+    s: &Setup,
+    form: Form,
+    algorithm: Algorithm,
+    dt: f64,
+    keep: Keep,
+) -> Result<RunOut, String> {
+    let g = &s.grid;
+    let n = steps_dividing(g.t_end, dt)
+        .ok_or_else(|| format!("the step {dt} does not divide t_end = {}", g.t_end))?;
+    let per_sample = steps_dividing(g.sample_every, dt).ok_or_else(|| {
+        format!(
+            "the step {dt} does not divide sample_every = {}",
+            g.sample_every
+        )
+    })?;
+    let per_score = steps_dividing(g.score_every, dt).ok_or_else(|| {
+        format!("the step {dt} does not divide score_every = {}", g.score_every)
+    })?;
+    if n > s.max_steps {
+        return Err(format!(
+            "{n} steps are over the case's max_steps = {}",
+            s.max_steps
+        ));
+    }
+    let mut col = build::<C>(s, form)?;
+    let num = &s.case.numerics;
+    let dim = col.dim();
+    let mut f = DVector::zeros(dim);
+    let mut log = Log {
+        stats: Stats::default(),
+        work: 0.0,
+        last: (0.0, 0.0, 0.0, 0.0),
+        samples: vec![],
+        peak_load: 0.0,
+        keep,
+    };
+    let mut out = RunOut::default();
+    // The prelude: the axial load in its load steps (cyclic and dynamic scenes).
+    if let Loading::Cyclic {
+        axial, axial_steps, ..
+    } = s.scene.loading
+    {
+        for j in 1..=axial_steps {
+            let (f0, z0) = (f[col.top_dof(2)], col.top_displacement().z);
+            f[col.top_dof(2)] = -axial * j as f64 / axial_steps as f64;
+            match col.step(&f, None, num.tol, num.max_iter, Algorithm::Newton) {
+                Ok((c, _)) => {
+                    log.count(c);
+                    // The prelude's work belongs to the input: the elements' work counts it.
+                    log.work +=
+                        0.5 * (f0 + f[col.top_dof(2)]) * (col.top_displacement().z - z0);
+                }
+                Err(e) => {
+                    out.stats = log.stats;
+                    out.failure = Some(failure(0.0, e));
+                    return Ok(out);
+                }
+            }
+        }
+        log.peak_load = axial;
+    }
+    let (load_dof, value) = match s.scene.loading {
+        Loading::TipForce(v) => (Some(col.top_dof(0)), v),
+        Loading::TipMoment(v) => (Some(col.top_dof(4)), v),
+        Loading::Cyclic {
+            ref protocol,
+            increment: _,
+            ..
+        } => {
+            let k = dt.round() as usize;
+            if (dt - dt.round()).abs() > 1e-9 || k == 0 {
+                return Err(format!(
+                    "the step {dt} is not a whole number of protocol increments"
+                ));
+            }
+            if let Some(i) = reversals(protocol).into_iter().find(|i| i % k != 0) {
+                return Err(format!(
+                    "the step {dt} skips the protocol's reversal at t = {i}; a step must divide \
+                     every protocol segment"
+                ));
+            }
+            (None, 0.0)
+        }
+        Loading::Pulse { .. } => return Err("a dynamic scene needs a dynamic integrator".into()),
+    };
+    log.peak_load = log.peak_load.max(value.abs());
+    let mut base = nalgebra::Vector3::zeros();
+    let first = log.observe(&col, 0.0, base);
+    log.last = (
+        first.top_displacement,
+        first.top_axial,
+        first.top_rotation,
+        0.0,
+    );
+    if keep == Keep::Samples {
+        log.samples.push(first);
+    }
+    let mut obs = first;
+    let mut prev_load = (0.0, first.base_shear, first.axial_force);
+    for k in 1..=n {
+        let t = k as f64 * dt;
+        let prescribed = match &s.scene.loading {
+            Loading::Cyclic { protocol, .. } => Some(Prescribed {
+                dof: col.top_dof(0),
+                value: protocol[(t.round() as usize).min(protocol.len() - 1)],
+            }),
+            _ => None,
+        };
+        if let Some(d) = load_dof {
+            f[d] = t * value;
+        }
+        match col.step(&f, prescribed, num.tol, num.max_iter, algorithm) {
+            Ok((c, b)) => {
+                log.count(c);
+                base = b;
+            }
+            Err(e) => {
+                out.failure = Some(failure(t, e));
+                break;
+            }
+        }
+        let d = col.top_displacement();
+        let turn = col.top_turn();
+        // The input work, trapezoid on the step.
+        let (v, nz) = (-base.x, -base.z);
+        log.work += match (&s.scene.loading, load_dof) {
+            (Loading::TipMoment(_), _) => 0.5 * (prev_load.0 + t * value) * (turn - log.last.2),
+            (_, Some(_)) => 0.5 * (prev_load.0 + t * value) * (d.x - log.last.0),
+            _ => {
+                0.5 * (prev_load.1 + v) * (d.x - log.last.0)
+                    + 0.5 * (prev_load.2 + nz) * (d.z - log.last.1)
+            }
+        };
+        prev_load = (t * value, v, nz);
+        log.last = (d.x, d.z, turn, 0.0);
+        if prescribed.is_some() {
+            log.peak_load = log.peak_load.max(v.abs());
+        }
+        let sample = k % per_sample == 0;
+        if sample || k == n {
+            obs = log.observe(&col, t, base);
+            if keep == Keep::Samples && k % per_score == 0 {
+                obs.equilibrium_residual = Some(
+                    col.residual_max(&f, prescribed.map(|p| p.dof))
+                        .map_err(|e| format!("the equilibrium check at t = {t}: {e}"))?,
+                );
+            }
+            if keep == Keep::Samples && sample {
+                log.samples.push(obs);
+            }
+        }
+    }
+    if log.keep == Keep::Final {
+        log.samples.push(obs);
+    }
+    out.stats = log.stats;
+    out.samples = log.samples;
+    out.peak_load = log.peak_load;
+    Ok(out)
+}
+
+/// The indices of a protocol's reversals and returns to zero (segment ends).
+fn reversals(protocol: &[f64]) -> Vec<usize> {
+    let mut out = vec![];
+    for i in 1..protocol.len().saturating_sub(1) {
+        let (a, b) = (protocol[i] - protocol[i - 1], protocol[i + 1] - protocol[i]);
+        if a * b <= 0.0 || protocol[i] == 0.0 {
+            out.push(i);
+        }
+    }
+    out
+}
