@@ -58,6 +58,8 @@ fn embedded_files_load() {
     assert_eq!(
         names,
         [
+            "fiber_column_cyclic",
+            "fiber_column_static",
             "flexible_beam",
             "free_body",
             "gimbal_lock",
@@ -269,7 +271,7 @@ fn wrong_type() {
     );
     error_at(&edited("schema = 1", "schema = 1.0"), "schema");
     let e = error_at(&edited("\"numerical\"", "\"stored\""), "reference");
-    assert!(e.message.contains("`numerical` or `exact`"), "{e}");
+    assert!(e.message.contains("`numerical`, `exact`"), "{e}");
 }
 
 // A missing required key is named, and a TOML syntax error gives file and line.

@@ -8,9 +8,9 @@
 //!
 //! The kinds are today's four (work-precision against wall time and RHS evaluations,
 //! convergence over the fixed-step ladder, quantities over time (energy and constraint drift,
-//! a family's own column against the reference), a measure across the scenes of a case). A
-//! new kind (an x-y curve such as a hysteresis loop) is a new list here and its composer in
-//! `src/report/`.
+//! a family's own column against the reference, or against another column: an x-y curve such
+//! as a hysteresis loop), a measure across the scenes of a case). A new kind is a new list
+//! here and its composer in `src/report/`.
 //!
 //! # Example
 //!
@@ -122,6 +122,9 @@ pub enum Quantity {
         what: &'static str,
         y_label: &'static str,
         groups: &'static [FormulationGroup],
+        /// Against another column instead of time: `(column, its reference, axis label)`
+        /// (a hysteresis loop: the base shear against the top's displacement).
+        x: Option<(&'static str, &'static str, &'static str)>,
     },
 }
 

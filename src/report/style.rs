@@ -22,7 +22,7 @@ use plotters::style::RGBColor;
 use crate::problem::{Axis, axis_position};
 
 /// The integrator colours, in `axis_names(Axis::Integrator)` order.
-const INTEGRATOR_COLOURS: [RGBColor; 20] = [
+const INTEGRATOR_COLOURS: [RGBColor; 24] = [
     RGBColor(127, 127, 127), // euler: grey
     RGBColor(31, 119, 180),  // rk4: blue
     RGBColor(255, 127, 14),  // dopri5: orange
@@ -42,7 +42,11 @@ const INTEGRATOR_COLOURS: [RGBColor; 20] = [
     RGBColor(200, 0, 120),   // hht: magenta
     RGBColor(0, 170, 170),   // gen_alpha: teal
     RGBColor(0, 40, 140),    // gen_alpha_i3: navy
-    RGBColor(0, 255, 127),   // the next registered method: spring green
+    RGBColor(230, 140, 0),   // newton_load (fiber column): amber
+    RGBColor(30, 110, 220),  // newton_disp: blue
+    RGBColor(0, 20, 0),      // newton_disp_ls: near black
+    RGBColor(220, 40, 40),   // newton_disp_krylov: red
+    RGBColor(60, 160, 60),   // midpoint (fiber column): green
 ];
 
 /// Extra colours for integrators past the palette.

@@ -199,10 +199,23 @@ fn track_plot(
         id,
         what,
         y_label,
+        x,
         ..
     } = q
     else {
         return None;
+    };
+    // Points of a column: against time, or against the x column of the same series.
+    let against = |s: &crate::summary::Series, ys: &[Option<f64>], x_col: &str| match x {
+        None => pairs(&s.t, ys),
+        Some(_) => match s.tracks.get(x_col) {
+            Some(xs) => xs
+                .iter()
+                .zip(ys)
+                .filter_map(|(a, b)| Some(((*a)?, (*b)?)))
+                .collect(),
+            None => vec![],
+        },
     };
     let ran = |f: &str| sv.variants.iter().any(|v| v.key.formulation == f);
     if !group.formulations.iter().any(|f| ran(f)) {
@@ -239,7 +252,8 @@ fn track_plot(
             missing.push(format!("{} (no {column} in its series)", v.key.label()));
             continue;
         };
-        let refs = pairs(&s.t, s.tracks.get(r_col).map_or(&[][..], |x| &x[..]));
+        let x_ref = x.map_or("", |x| x.1);
+        let refs = against(&s, s.tracks.get(r_col).map_or(&[][..], |x| &x[..]), x_ref);
         if refs.len() > reference.len() {
             reference = refs;
         }
@@ -252,7 +266,7 @@ fn track_plot(
             _ => data::step_label(r),
         };
         used.push(format!("{f}: {} at {how}", v.key.integrator));
-        let points = pairs(&s.t, track);
+        let points = against(&s, track, x.map_or("", |x| x.0));
         let n = points.len();
         lines.push(Line {
             key: v.key.clone(),
@@ -289,11 +303,17 @@ fn track_plot(
     }
     Some(Plot {
         id: format!("{}/{id}_{}", sv.name, group.id),
-        title: format!(
-            "{}/{}: {column} over time ({})",
-            cv.name, sv.name, group.label
-        ),
-        x_label: "t (s)".into(),
+        title: match x {
+            None => format!(
+                "{}/{}: {column} over time ({})",
+                cv.name, sv.name, group.label
+            ),
+            Some((x_col, ..)) => format!(
+                "{}/{}: {column} against {x_col} ({})",
+                cv.name, sv.name, group.label
+            ),
+        },
+        x_label: x.map_or("t (s)", |x| x.2).into(),
         y_label: y_label.into(),
         x: Scale::Linear,
         y: Scale::Linear,

@@ -238,17 +238,6 @@ impl Problem for FiberProblem {
         {
             return Some("the case gives no numerics.fine_elements".into());
         }
-        if kind == "cyclic"
-            && v.param != "so3"
-            && (v.formulation != "force_based" || int != "newton_disp")
-        {
-            return Some(
-                "the chart axis is compared on force_based with newton_disp; the other \
-                 algorithms and the rival meshes run on so3 (at the top's rotation of at \
-                 most 0.045 rad the charts converge to the same equilibrium)"
-                    .into(),
-            );
-        }
         None
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {

@@ -68,6 +68,7 @@ const FIGURES: Figures = Figures {
                 what: "Tip deflection v_tip (m, in the rotating frame) at the score times, \
                     against the fe_exact reference (black).",
                 y_label: "v_tip (m)",
+                x: None,
                 groups: &[
                     FormulationGroup {
                         id: "stiffened",
