@@ -24,6 +24,7 @@ pub mod column;
 mod column_tests;
 pub mod corotational;
 pub mod elastica;
+pub mod krylov;
 pub mod layout;
 pub mod material;
 #[cfg(test)]

@@ -48,14 +48,14 @@ fn rc_pulse_newmark_matches_opensees() {
         let u_pred = &u + &v * h + &a * (h * h * (0.5 - beta));
         let v_pred = &v + &a * (h * (1.0 - gamma));
         f[col.top_dof(0)] = -m * ground(t);
-        let inertia = Inertia {
-            mass: &mass,
-            a0: A0,
-            c_a: 1.0 / (beta * h * h),
-            c_v: gamma * h,
-            u_pred: &u_pred,
-            v_pred: &v_pred,
-        };
+        let inertia = Inertia::newmark(
+            &mass,
+            A0,
+            1.0 / (beta * h * h),
+            gamma * h,
+            &u_pred,
+            &v_pred,
+        );
         let (c, _) = col
             .step_dynamic(&f, None, Some(inertia), 1e-20, 50, Algorithm::Newton)
             .unwrap_or_else(|e| panic!("step {step}: {e}"));
