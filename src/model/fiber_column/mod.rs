@@ -9,11 +9,14 @@
 //! and bar layers; `quadrature.rs` the Lobatto and Legendre points; `basic.rs` the
 //! force-based and displacement-based elements in their basic system; `corotational.rs` the
 //! 3-D corotational transformation; `chart.rs` the nodal rotation charts (the `param`
-//! axis); `column.rs` the assembled cantilever and its static Newton step; `elastica.rs` the
-//! exact large-deflection cantilever (Bisshopp & Drucker) and the roll-up's circle, the
+//! axis); `column.rs` the assembled cantilever and its Newton step (plain, line search, or
+//! Krylov-accelerated with `krylov.rs`); `dynamic.rs` the driver of the ground-motion scene
+//! (Newmark, HHT, generalized-alpha, energy-consistent midpoint; energy books; `omega1`);
+//! `elastica.rs` the exact large-deflection cantilever (Bisshopp & Drucker) and the roll-up's circle, the
 //! static scenes' references. `column_tests.rs` checks the column against the elastica and
 //! the roll-up, `rc_tests.rs` and `pulse_tests.rs` against the stored OpenSees runs of the
-//! RC column (cyclic, and under the ground-acceleration pulse with Newmark's rule).
+//! RC column (cyclic, and under the ground-acceleration pulse with Newmark's rule), and
+//! `dynamic_tests.rs` the four schemes' pulse runs, energy balances and orders.
 //!
 //! The family's line in the table is `family.rs`; `case.rs` reads its case files,
 //! `run.rs` runs a scene, `problem.rs` scores it behind the `Problem` seam against
@@ -27,8 +30,12 @@ pub mod column;
 #[cfg(test)]
 mod column_tests;
 pub mod corotational;
+pub mod dynamic;
+#[cfg(test)]
+mod dynamic_tests;
 pub mod elastica;
 pub mod family;
+pub mod krylov;
 pub mod layout;
 pub mod material;
 pub mod problem;
