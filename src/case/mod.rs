@@ -62,10 +62,14 @@ pub use schema::{RawGrid, RawShared, RawStability};
 /// The only schema version this loader reads.
 pub const SCHEMA: i64 = 1;
 /// The catalogue files compiled into the binary, sorted by name.
-const EMBEDDED: [(&str, &str); 7] = [
+const EMBEDDED: [(&str, &str); 8] = [
     (
         "cases/fiber_column_cyclic.toml",
         include_str!("../../cases/fiber_column_cyclic.toml"),
+    ),
+    (
+        "cases/fiber_column_dynamic.toml",
+        include_str!("../../cases/fiber_column_dynamic.toml"),
     ),
     (
         "cases/fiber_column_static.toml",

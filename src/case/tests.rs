@@ -59,6 +59,7 @@ fn embedded_files_load() {
         names,
         [
             "fiber_column_cyclic",
+            "fiber_column_dynamic",
             "fiber_column_static",
             "flexible_beam",
             "free_body",

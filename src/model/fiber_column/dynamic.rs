@@ -111,6 +111,8 @@ impl Energies {
 /// The dynamic driver: the column, the scheme's state and the energy books.
 pub struct Dynamic<C: RotationChart> {
     column: Column<C>,
+    /// The support's reaction after the last step.
+    base: Vector3<f64>,
     scheme: Scheme,
     /// `(am, af, beta, gamma)`.
     params: (f64, f64, f64, f64),
@@ -230,6 +232,7 @@ impl<C: RotationChart> Dynamic<C> {
         let work0 = column.energies();
         Ok(Self {
             column,
+            base: Vector3::zeros(),
             scheme,
             params,
             h,
@@ -322,9 +325,10 @@ impl<C: RotationChart> Dynamic<C> {
             f_old: (w_int != 1.0).then_some(&self.f_old),
             work_consistent,
         };
-        let (count, _) =
+        let (count, base) =
             self.column
                 .step_dynamic(&self.f_ext, None, Some(inertia), tol, max_iter, algorithm)?;
+        self.base = base;
         self.iterations += count.iterations;
         // The scheme's new state and the energy books.
         let d = self.column.top_displacement();
@@ -355,6 +359,12 @@ impl<C: RotationChart> Dynamic<C> {
         self.f_old.copy_from(self.column.internal_force());
         self.n += 1;
         Ok(count)
+    }
+
+    /// The support's reaction on the column at the end of the last step (N): the base shear
+    /// is `-x`, the axial force `-z` (zero before the first step).
+    pub fn base_reaction(&self) -> Vector3<f64> {
+        self.base
     }
 
     /// The time reached (`n h`).

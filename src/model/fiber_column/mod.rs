@@ -19,7 +19,7 @@
 //! `dynamic_tests.rs` the four schemes' pulse runs, energy balances and orders.
 //!
 //! The family's line in the table is `family.rs`; `case.rs` reads its case files,
-//! `run.rs` runs a scene, `problem.rs` scores it behind the `Problem` seam against
+//! `run.rs` runs a static or cyclic scene and `run_dynamic.rs` the pulse, `problem.rs` scores it behind the `Problem` seam against
 //! `reference.rs`'s references (the exact ones cross-checked by `shooting.rs`).
 pub mod basic;
 pub mod case;
@@ -44,6 +44,7 @@ mod pulse_tests;
 pub mod quadrature;
 pub mod reference;
 pub mod run;
+pub mod run_dynamic;
 #[cfg(test)]
 mod rc_tests;
 pub mod section;

@@ -20,7 +20,7 @@ use super::case::{ColumnCase, ColumnScene, Loading};
 use super::elastica::{elastica_tip, rollup_tip};
 use super::family::{FAMILY, table};
 use super::reference::{self as fref, CrossCheck, ExactReference, External, Provenance, Track};
-use super::run::{ColumnObs, Keep, RunOut, Setup};
+use super::run::{ColumnObs, Form, Keep, RunOut, Setup};
 use super::shooting::shooting_tip;
 use crate::case::{Case, CaseError, Scene};
 use crate::integrate::MethodInfo;
@@ -45,6 +45,7 @@ pub struct FiberProblem {
     scene: String,
     inputs_sha256: String,
     primary_metric: String,
+    energy_scale: f64,
     setup: Setup,
     ladders: Ladders,
     quick: Ladders,
@@ -52,6 +53,11 @@ pub struct FiberProblem {
 }
 
 const STATIC_METRICS: [&str; 2] = ["tip_error", "tip_error_max"];
+const DYNAMIC_METRICS: [&str; 3] = [
+    "top_displacement_error_max",
+    "peak_displacement_error",
+    "residual_displacement_error",
+];
 const FORCE_METRICS: [&str; 3] = [
     "base_shear_error_rms",
     "base_shear_error_max",
@@ -75,6 +81,7 @@ impl FiberProblem {
             scene: scene.name.clone(),
             inputs_sha256: crate::case::inputs_sha256(case, scene),
             primary_metric: case.primary_metric.clone(),
+            energy_scale: case.energy_scale,
             setup: Setup {
                 case: c.clone(),
                 scene: s.clone(),
@@ -222,14 +229,22 @@ impl Problem for FiberProblem {
         match kind {
             "static" if int != "newton_load" => {
                 return Some(format!(
-                    "{int} is for the cyclic scenes' displacement control; a static scene \
-                     steps its load with newton_load"
+                    "{int} is for the {} scenes; a static scene steps its load with \
+                     newton_load",
+                    if int.starts_with("newton") { "cyclic" } else { "dynamic" }
                 ));
             }
             "cyclic" if !int.starts_with("newton_disp") => {
                 return Some(format!(
-                    "{int} is for load control; a cyclic scene prescribes the top's \
-                     displacement (newton_disp*)"
+                    "{int} is for {}; a cyclic scene prescribes the top's displacement \
+                     (newton_disp*)",
+                    if int == "newton_load" { "load control" } else { "the pulse" }
+                ));
+            }
+            "dynamic" if int.starts_with("newton") => {
+                return Some(format!(
+                    "{int} is a static algorithm; the pulse is stepped in time by newmark, \
+                     hht, gen_alpha or midpoint"
                 ));
             }
             _ => {}
@@ -239,6 +254,16 @@ impl Problem for FiberProblem {
             return Some("the case gives no numerics.fine_elements".into());
         }
         None
+    }
+    fn first_period(&self) -> Option<f64> {
+        let Loading::Pulse { mass, .. } = *self.loading() else {
+            return None;
+        };
+        let mut col = super::run::build::<super::chart::So3>(&self.setup, Form::ForceBased).ok()?;
+        let mut log = super::run::Log::new(Keep::Final);
+        super::run::prelude(&mut col, &self.setup, &mut log).ok()?;
+        let w = super::dynamic::omega1(&mut col, mass).ok()?;
+        Some(std::f64::consts::TAU / w)
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
         if matches!(self.loading(), Loading::TipForce(_) | Loading::TipMoment(_)) {
@@ -268,6 +293,9 @@ impl Problem for FiberProblem {
             }
             Attached::External(x) if FORCE_METRICS.contains(&metric) => {
                 x.claim.get("base_shear").copied()
+            }
+            Attached::External(x) if DYNAMIC_METRICS.contains(&metric) => {
+                x.claim.get("top_displacement").copied()
             }
             _ => None,
         }
@@ -465,6 +493,38 @@ impl FiberProblem {
                 s.set("tip_error_max", e.iter().copied().fold(0.0, f64::max));
                 primary_error = Some(e);
             }
+            ("dynamic", None, Some(r)) => {
+                let u_ref = r.column("top_displacement");
+                let peak_ref = u_ref.iter().fold(0.0f64, |p, x| p.max(x.abs()));
+                let d: Vec<f64> = scored
+                    .iter()
+                    .zip(u_ref)
+                    .map(|(o, x)| (o.top_displacement - x).abs() / peak_ref)
+                    .collect();
+                let peak = scored
+                    .iter()
+                    .fold(0.0f64, |p, o| p.max(o.top_displacement.abs()));
+                s.set("top_displacement_error_max", d.iter().copied().fold(0.0, f64::max));
+                s.set("peak_displacement_error", (peak - peak_ref).abs() / peak_ref);
+                s.set("residual_displacement_error", *d.last().unwrap_or(&f64::NAN));
+                let v_ref = r.column("base_shear");
+                let peak_v = v_ref.iter().fold(0.0f64, |p, x| p.max(x.abs()));
+                let dv: Vec<f64> = scored
+                    .iter()
+                    .zip(v_ref)
+                    .map(|(o, x)| (o.base_shear - x).abs() / peak_v)
+                    .collect();
+                let rms = (dv.iter().map(|x| x * x).sum::<f64>() / dv.len() as f64).sqrt();
+                s.set("base_shear_error_rms", rms);
+                s.set("base_shear_error_max", dv.iter().copied().fold(0.0, f64::max));
+                if self.primary_metric == "top_displacement_error_max" {
+                    primary_error = Some(d);
+                }
+                tracks.insert(
+                    "base_shear_reference".to_string(),
+                    v_ref.iter().map(|x| Some(*x)).collect(),
+                );
+            }
             (_, None, Some(r)) => {
                 let v_ref = r.column("base_shear");
                 let peak = v_ref.iter().fold(0.0f64, |p, x| p.max(x.abs()));
@@ -501,6 +561,32 @@ impl FiberProblem {
             _ => {}
         }
         let why = why.unwrap_or_default();
+        match (&out.balance_max, &failed) {
+            (Some(b), None) => s.set("energy_balance_error_max", b / self.energy_scale),
+            (Some(_), Some(f)) => s.null("energy_balance_error_max", f.clone()),
+            (None, _) => s.null(
+                "energy_balance_error_max",
+                format!("a {kind} scene has no dynamics; its check is the equilibrium residual"),
+            ),
+        }
+        if kind == "dynamic" {
+            s.null(
+                "equilibrium_residual_max",
+                "a dynamic step's balance includes inertia; its check is the energy balance",
+            );
+            s.null(
+                "dissipated_energy_error",
+                "the pulse's dissipation is in its energy balance",
+            );
+        }
+        for m in DYNAMIC_METRICS {
+            if s.values.get(m).is_none() {
+                s.null(
+                    m,
+                    if kind == "dynamic" { why.clone() } else { format!("a {kind} scene") },
+                );
+            }
+        }
         for m in STATIC_METRICS {
             if s.values.get(m).is_none() {
                 s.null(m, if kind == "static" { why.clone() } else { not_static.clone() });

@@ -91,6 +91,8 @@ pub struct RunOut {
     /// The largest applied load over the run (N or N m): the tip load, the axial load, the
     /// prescribed displacement's reaction.
     pub peak_load: f64,
+    /// A dynamic run's largest `|energy balance|` over its steps (J).
+    pub balance_max: Option<f64>,
 }
 
 /// The column of a formulation (errors name the case key at fault).
@@ -125,22 +127,89 @@ pub fn build<C: RotationChart>(s: &Setup, form: Form) -> Result<Column<C>, Strin
     Column::new(s.case.height, els)
 }
 
-fn failure(t: f64, e: NewtonFailure) -> Failure {
+/// The axial prelude of a scene with an axial load (in its load steps, load control, plain
+/// Newton, before `t = 0`): returns the load vector with the axial load in place (zero for
+/// a scene without one). Its work goes into the log's input work (the elements' work counts
+/// it).
+pub(super) fn prelude<C: RotationChart>(
+    col: &mut Column<C>,
+    s: &Setup,
+    log: &mut Log,
+) -> Result<DVector<f64>, NewtonFailure> {
+    let num = &s.case.numerics;
+    let mut f = DVector::zeros(col.dim());
+    let (axial, steps) = match s.scene.loading {
+        Loading::Cyclic {
+            axial, axial_steps, ..
+        }
+        | Loading::Pulse {
+            axial, axial_steps, ..
+        } => (axial, axial_steps),
+        _ => return Ok(f),
+    };
+    let top = col.top_dof(2);
+    for j in 1..=steps {
+        let (f0, z0) = (f[top], col.top_displacement().z);
+        f[top] = -axial * j as f64 / steps as f64;
+        let (c, _) = col.step(&f, None, num.tol, num.max_iter, Algorithm::Newton)?;
+        log.count(c);
+        log.work += 0.5 * (f0 + f[top]) * (col.top_displacement().z - z0);
+    }
+    log.peak_load = axial;
+    Ok(f)
+}
+
+/// The steps of a run at `dt`, checked against the grid and the case's budget: `(steps,
+/// steps per sample, steps per score)`.
+pub(super) fn steps(s: &Setup, dt: f64) -> Result<(u64, u64, u64), String> {
+    let g = &s.grid;
+    let n = steps_dividing(g.t_end, dt)
+        .ok_or_else(|| format!("the step {dt} does not divide t_end = {}", g.t_end))?;
+    let per_sample = steps_dividing(g.sample_every, dt).ok_or_else(|| {
+        format!(
+            "the step {dt} does not divide sample_every = {}",
+            g.sample_every
+        )
+    })?;
+    let per_score = steps_dividing(g.score_every, dt).ok_or_else(|| {
+        format!("the step {dt} does not divide score_every = {}", g.score_every)
+    })?;
+    if n > s.max_steps {
+        return Err(format!(
+            "{n} steps are over the case's max_steps = {}",
+            s.max_steps
+        ));
+    }
+    Ok((n, per_sample, per_score))
+}
+
+pub(super) fn failure(t: f64, e: NewtonFailure) -> Failure {
     Failure::new(FailureKind::NewtonFailure, t, e.to_string())
 }
 
 /// The run's bookkeeping: counters, the input work and the samples.
-struct Log {
-    stats: Stats,
-    work: f64,
+pub(super) struct Log {
+    pub(super) stats: Stats,
+    pub(super) work: f64,
     last: (f64, f64, f64, f64),
-    samples: Vec<ColumnObs>,
-    peak_load: f64,
+    pub(super) samples: Vec<ColumnObs>,
+    pub(super) peak_load: f64,
     keep: Keep,
 }
 
 impl Log {
-    fn count(&mut self, c: StepCount) {
+    pub(super) fn new(keep: Keep) -> Self {
+        Log {
+            stats: Stats::default(),
+            work: 0.0,
+            last: (0.0, 0.0, 0.0, 0.0),
+            samples: vec![],
+            peak_load: 0.0,
+            keep,
+        }
+    }
+
+    pub(super) fn count(&mut self, c: StepCount) {
         self.stats.steps += 1;
         self.stats.newton_iters += c.iterations as u64;
         // A state determination per iteration plus the final one of the step.
@@ -181,61 +250,19 @@ pub fn run_static<C: RotationChart>(
     dt: f64,
     keep: Keep,
 ) -> Result<RunOut, String> {
-    let g = &s.grid;
-    let n = steps_dividing(g.t_end, dt)
-        .ok_or_else(|| format!("the step {dt} does not divide t_end = {}", g.t_end))?;
-    let per_sample = steps_dividing(g.sample_every, dt).ok_or_else(|| {
-        format!(
-            "the step {dt} does not divide sample_every = {}",
-            g.sample_every
-        )
-    })?;
-    let per_score = steps_dividing(g.score_every, dt).ok_or_else(|| {
-        format!("the step {dt} does not divide score_every = {}", g.score_every)
-    })?;
-    if n > s.max_steps {
-        return Err(format!(
-            "{n} steps are over the case's max_steps = {}",
-            s.max_steps
-        ));
-    }
+    let (n, per_sample, per_score) = steps(s, dt)?;
     let mut col = build::<C>(s, form)?;
     let num = &s.case.numerics;
-    let dim = col.dim();
-    let mut f = DVector::zeros(dim);
-    let mut log = Log {
-        stats: Stats::default(),
-        work: 0.0,
-        last: (0.0, 0.0, 0.0, 0.0),
-        samples: vec![],
-        peak_load: 0.0,
-        keep,
-    };
+    let mut log = Log::new(keep);
     let mut out = RunOut::default();
-    // The prelude: the axial load in its load steps (cyclic and dynamic scenes).
-    if let Loading::Cyclic {
-        axial, axial_steps, ..
-    } = s.scene.loading
-    {
-        for j in 1..=axial_steps {
-            let (f0, z0) = (f[col.top_dof(2)], col.top_displacement().z);
-            f[col.top_dof(2)] = -axial * j as f64 / axial_steps as f64;
-            match col.step(&f, None, num.tol, num.max_iter, Algorithm::Newton) {
-                Ok((c, _)) => {
-                    log.count(c);
-                    // The prelude's work belongs to the input: the elements' work counts it.
-                    log.work +=
-                        0.5 * (f0 + f[col.top_dof(2)]) * (col.top_displacement().z - z0);
-                }
-                Err(e) => {
-                    out.stats = log.stats;
-                    out.failure = Some(failure(0.0, e));
-                    return Ok(out);
-                }
-            }
+    let mut f = match prelude(&mut col, s, &mut log) {
+        Ok(f) => f,
+        Err(e) => {
+            out.stats = log.stats;
+            out.failure = Some(failure(0.0, e));
+            return Ok(out);
         }
-        log.peak_load = axial;
-    }
+    };
     let (load_dof, value) = match s.scene.loading {
         Loading::TipForce(v) => (Some(col.top_dof(0)), v),
         Loading::TipMoment(v) => (Some(col.top_dof(4)), v),
