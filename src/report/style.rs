@@ -22,7 +22,7 @@ use plotters::style::RGBColor;
 use crate::problem::{Axis, axis_position};
 
 /// The integrator colours, in `axis_names(Axis::Integrator)` order.
-const INTEGRATOR_COLOURS: [RGBColor; 24] = [
+const INTEGRATOR_COLOURS: [RGBColor; 25] = [
     RGBColor(127, 127, 127), // euler: grey
     RGBColor(31, 119, 180),  // rk4: blue
     RGBColor(255, 127, 14),  // dopri5: orange
@@ -47,6 +47,7 @@ const INTEGRATOR_COLOURS: [RGBColor; 24] = [
     RGBColor(0, 20, 0),      // newton_disp_ls: near black
     RGBColor(220, 40, 40),   // newton_disp_krylov: red
     RGBColor(60, 160, 60),   // midpoint (fiber column): green
+    RGBColor(0, 255, 127),   // stormer_verlet (the seam test's family): spring green
 ];
 
 /// Extra colours for integrators past the palette.

@@ -29,7 +29,7 @@ pub fn check_error(label: &str, e: &CaseError) {
 
 /// The invariants of a loaded case (case/mod.rs and each family's case.rs, "Invariants after
 /// loading"): the rigid body's state and inertia, the flexible beam's positive physics and
-/// breakpoints inside the horizon.
+/// breakpoints inside the horizon, the fiber column's loads and protocol.
 pub fn check_case(c: &Case) {
     let finite3 = |v: &nalgebra::Vector3<f64>| v.iter().all(|x| x.is_finite());
     assert!(c.energy_scale.is_finite() && c.energy_scale > 0.0);
@@ -40,10 +40,33 @@ pub fn check_case(c: &Case) {
             assert!(finite3(&r.omega0), "{}: omega0 {:?}", s.name, r.omega0);
             assert!(r.inertia.iter().all(|x| x.is_finite()));
             assert_eq!(r.inertia, r.inertia.transpose());
+        } else if let Some(f) = s.physics::<mbdbench::model::fiber_column::case::ColumnScene>() {
+            use mbdbench::model::fiber_column::case::Loading;
+            let ok = match &f.loading {
+                Loading::TipForce(x) | Loading::TipMoment(x) => x.is_finite(),
+                Loading::Cyclic {
+                    axial,
+                    protocol,
+                    increment,
+                    ..
+                } => {
+                    *axial > 0.0
+                        && *increment > 0.0
+                        && protocol.iter().all(|u| u.is_finite())
+                        && (protocol.len() - 1) as f64 == s.t_end
+                }
+                Loading::Pulse {
+                    axial,
+                    mass,
+                    period,
+                    ..
+                } => *axial > 0.0 && *mass > 0.0 && *period > 0.0,
+            };
+            assert!(ok, "{}: {:?}", s.name, f.loading);
         } else {
             let b = s
                 .physics::<mbdbench::model::flexible_beam::case::BeamScene>()
-                .expect("a rigid-body or flexible-beam scene");
+                .expect("a rigid-body, flexible-beam or fiber-column scene");
             let beam = b.beam;
             for x in [beam.l, beam.ea, beam.ei, beam.rho_a, b.energy_scale] {
                 assert!(x.is_finite() && x > 0.0, "{}: {beam:?}", s.name);

@@ -476,8 +476,6 @@ impl FiberProblem {
                 .is_none()
                 .then(|| "no reference attached".to_string())
         });
-        let not_static = format!("a {kind} scene has no exact tip");
-        let not_forces = "a static scene's exact reference has no forces".to_string();
         match (kind, &why, &reference) {
             ("static", None, Some(r)) => {
                 let e: Vec<f64> = scored
@@ -561,40 +559,37 @@ impl FiberProblem {
             _ => {}
         }
         let why = why.unwrap_or_default();
-        match (&out.balance_max, &failed) {
-            (Some(b), None) => s.set("energy_balance_error_max", b / self.energy_scale),
-            (Some(_), Some(f)) => s.null("energy_balance_error_max", f.clone()),
-            (None, _) => s.null(
-                "energy_balance_error_max",
-                format!("a {kind} scene has no dynamics; its check is the equilibrium residual"),
-            ),
-        }
-        if kind == "dynamic" {
-            s.null(
-                "equilibrium_residual_max",
-                "a dynamic step's balance includes inertia; its check is the energy balance",
-            );
-            s.null(
+        // The metrics of the scene's kind: those not computed are null with the reason;
+        // those of the other kinds do not apply and are absent (never 0).
+        let applies: &[&str] = match kind {
+            "static" => &["tip_error", "tip_error_max", "equilibrium_residual_max"],
+            "cyclic" => &[
+                "base_shear_error_rms",
+                "base_shear_error_max",
                 "dissipated_energy_error",
-                "the pulse's dissipation is in its energy balance",
-            );
-        }
-        for m in DYNAMIC_METRICS {
-            if s.values.get(m).is_none() {
-                s.null(
-                    m,
-                    if kind == "dynamic" { why.clone() } else { format!("a {kind} scene") },
-                );
+                "equilibrium_residual_max",
+            ],
+            _ => &[
+                "top_displacement_error_max",
+                "peak_displacement_error",
+                "residual_displacement_error",
+                "base_shear_error_rms",
+                "base_shear_error_max",
+                "energy_balance_error_max",
+            ],
+        };
+        if kind == "dynamic" {
+            s.values.remove("equilibrium_residual_max");
+            s.reasons.remove("equilibrium_residual_max");
+            match (&out.balance_max, &failed) {
+                (Some(b), None) => s.set("energy_balance_error_max", b / self.energy_scale),
+                (_, Some(f)) => s.null("energy_balance_error_max", f.clone()),
+                (None, None) => s.null("energy_balance_error_max", "no energy books"),
             }
         }
-        for m in STATIC_METRICS {
-            if s.values.get(m).is_none() {
-                s.null(m, if kind == "static" { why.clone() } else { not_static.clone() });
-            }
-        }
-        for m in FORCE_METRICS {
-            if s.values.get(m).is_none() {
-                s.null(m, if kind == "static" { not_forces.clone() } else { why.clone() });
+        for m in applies {
+            if !s.values.contains_key(*m) {
+                s.null(m, why.clone());
             }
         }
         if let Some(r) = &reference {
