@@ -47,7 +47,7 @@ const INTEGRATOR_COLOURS: [RGBColor; 25] = [
     RGBColor(0, 20, 0),      // newton_disp_ls: near black
     RGBColor(220, 40, 40),   // newton_disp_krylov: red
     RGBColor(60, 160, 60),   // midpoint (fiber column): green
-    RGBColor(0, 255, 127),   // stormer_verlet (the seam test's family): spring green
+    RGBColor(0, 255, 127),   // the next registered method (the seam test's): spring green
 ];
 
 /// Extra colours for integrators past the palette.

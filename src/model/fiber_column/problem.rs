@@ -34,7 +34,7 @@ use crate::summary::{self, Series};
 /// The attached reference.
 #[derive(Debug, Clone)]
 enum Attached {
-    Exact(ExactReference, String),
+    Exact(Box<ExactReference>, String),
     External(Box<External>),
 }
 
@@ -274,7 +274,7 @@ impl Problem for FiberProblem {
             reference::check_grid(&r.t, g.t_end, g.score_every).map_err(|m| {
                 reference::grid_error(root, &self.case, &self.scene, m).to_string()
             })?;
-            self.reference = Some(Attached::Exact(r, sha));
+            self.reference = Some(Attached::Exact(Box::new(r), sha));
         } else {
             self.reference = Some(Attached::External(Box::new(self.external(root)?)));
         }
