@@ -231,6 +231,8 @@ fn track_plot(
             .iter()
             .filter(|v| v.key.formulation == *f)
             .filter_map(|v| Some((v, drawn(cv, v)?)))
+            // Only runs whose series was kept (a family's selection may keep a subset).
+            .filter(|(_, r)| r.series.is_some())
             .collect();
         // A completed run first, on an integrator no line of the panel uses yet.
         let fresh =
