@@ -35,12 +35,10 @@ fn catalogue_files_load() {
         "fiber_column_cyclic",
         "fiber_column_dynamic",
     ] {
-        let Some((label, text)) = case::embedded_sources()
+        let (label, text) = case::embedded_sources()
             .iter()
             .find(|(l, _)| *l == format!("cases/{name}.toml"))
-        else {
-            continue;
-        };
+            .unwrap_or_else(|| panic!("{name} is not in the catalogue"));
         let c = case::load_str(label, text).unwrap_or_else(|e| panic!("{e}"));
         for s in &c.scenes {
             (family_of(&c).compile)(&c, s).unwrap_or_else(|e| panic!("{e}"));

@@ -12,7 +12,8 @@
 //! **External** (`references/fiber_column/opensees/<scene>.json`, schema
 //! `mbdbench.opensees_reference/1`, made by the Python script beside it): `mbdbench` cannot
 //! recompute it, so it checks it: the file's SHA-256 against `MANIFEST.json` in the same
-//! folder, its schema and scene, its columns (`t`, `top_displacement`, `top_axial`,
+//! folder (whose `provenance` block must name the tool, the command, the accuracy claim and
+//! the cross-check), its schema and scene, its columns (`t`, `top_displacement`, `top_axial`,
 //! `top_rotation`, `base_shear`, `axial_force`, of one length), that it holds every score
 //! time, and that its model is the case's (height, axial load, and for the pulse the mass
 //! and the damping coefficient): a reference of another column is stale. Its accuracy claim
@@ -201,6 +202,19 @@ pub fn load_external(
         .and_then(|b| {
             serde_json::from_slice(&b).map_err(|e| format!("{}: {e}", manifest_path.display()))
         })?;
+    for k in ["tool", "command", "accuracy_claim", "cross_check"] {
+        if manifest
+            .get("provenance")
+            .and_then(|p| p.get(k))
+            .and_then(|v| v.as_str())
+            .is_none()
+        {
+            return Err(format!(
+                "{}: key `provenance.{k}` is missing",
+                manifest_path.display()
+            ));
+        }
+    }
     let key = format!("references/fiber_column/opensees/{scene}.json");
     let listed = manifest
         .get("sha256")
