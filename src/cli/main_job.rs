@@ -32,7 +32,7 @@ pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> 
         return Ok(code);
     }
     let summary = out.join("summary.json");
-    let code = cmd_report(common, &summary, None)?;
+    let code = cmd_report(common, &summary, None, false)?;
     if code != EXIT_OK {
         return Ok(code);
     }

@@ -88,6 +88,10 @@ pub enum Command {
         /// Output folder (default: the summary's folder).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Also write every plot as a file, `svg/<case>/[<scene>/]<plot>.svg` (the page
+        /// inlines them all either way).
+        #[arg(long)]
+        svg: bool,
     },
     /// The recommendation: per case and target error, the cheapest variant reaching it on
     /// every non-control scene, its runner-up, and what to avoid and why.
@@ -321,7 +325,9 @@ pub fn execute(cli: Cli) -> i32 {
         Some(Command::Trajectory(a)) => cmd_trajectory(&common, &a),
         Some(Command::Gate(a)) => cmd_gate(&common, &a),
         Some(Command::Advise(a)) => cmd_advise(&common, &a),
-        Some(Command::Report { summary, out }) => cmd_report(&common, &summary, out.as_deref()),
+        Some(Command::Report { summary, out, svg }) => {
+            cmd_report(&common, &summary, out.as_deref(), svg)
+        }
         Some(Command::Reference { case, scene, check }) => {
             cmd_reference(&common, &case, scene.as_deref(), check)
         }
@@ -379,11 +385,12 @@ fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
 
 /// Writes the report of the summary at `summary_path` into `out` (default: beside it), with
 /// the cells of gated runs coloured by the gates (the quick gates for a quick summary, else the
-/// full ones; rows without a record are left out).
+/// full ones; rows without a record are left out); with `svg`, every plot also as a file.
 fn cmd_report(
     common: &Common,
     summary_path: &std::path::Path,
     out: Option<&std::path::Path>,
+    svg: bool,
 ) -> Result<i32, String> {
     let cases = load_cases(common)?;
     let summary = crate::gate::load_summary(summary_path).map_err(|e| e.to_string())?;
@@ -420,17 +427,20 @@ fn cmd_report(
         &summary,
         &dir.join("series"),
         &cases,
-        rows.as_deref(),
-        source,
-        Some(advice_for(
-            common,
-            &cases,
-            &summary,
-            &crate::advise::Options {
-                stability: stability.clone(),
-                ..Default::default()
-            },
-        )),
+        crate::report::Extras {
+            gate_rows: rows.as_deref(),
+            stability: source,
+            advice: Some(advice_for(
+                common,
+                &cases,
+                &summary,
+                &crate::advise::Options {
+                    stability: stability.clone(),
+                    ..Default::default()
+                },
+            )),
+            svg_files: svg,
+        },
         &out,
     )
     .map_err(|e| e.to_string())?;

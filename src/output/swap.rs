@@ -22,14 +22,15 @@ pub(super) enum Keep {
 
 /// Carries the entries of `old` that `keep` (given the `/`-separated relative path) accepts
 /// into `new`: folders are made, files hard-linked, symbolic links recreated (never
-/// followed). An entry already present in `new` is left as the new one. Returns the relative
-/// paths of the files carried over.
+/// followed). An entry already present in `new` is left as the new one; a folder left empty
+/// by the files it does not carry is not made. Returns the relative paths of the files
+/// carried over.
 pub(super) fn carry_over(
     old: &Path,
     new: &Path,
     keep: &dyn Fn(&str) -> Keep,
 ) -> Result<Vec<String>, String> {
-    let mut carried = vec![];
+    let (mut carried, mut dropped) = (vec![], vec![]);
     let mut stack = vec![String::new()];
     while let Some(rel_dir) = stack.pop() {
         let dir = old.join(&rel_dir);
@@ -64,6 +65,7 @@ pub(super) fn carry_over(
                 continue;
             }
             if let Keep::No = keep(&rel) {
+                dropped.push(rel);
                 continue;
             }
             match std::fs::symlink_metadata(&to) {
@@ -73,6 +75,18 @@ pub(super) fn carry_over(
             }
             link_one(&from, &to)?;
             carried.push(rel);
+        }
+    }
+    // A folder made here that holds nothing now held only files left behind (a report's
+    // `svg/` when the new report writes none): removed, up to the first folder that still
+    // holds something. A folder of the user's that held none of them is never touched.
+    for rel in &dropped {
+        let mut dir = Path::new(rel).parent();
+        while let Some(d) = dir.filter(|d| !d.as_os_str().is_empty()) {
+            if std::fs::remove_dir(new.join(d)).is_err() {
+                break;
+            }
+            dir = d.parent();
         }
     }
     Ok(carried)
@@ -161,7 +175,8 @@ mod tests {
     }
 
     /// Carrying over keeps what `keep` accepts (as hard links: same content, no copy), never
-    /// replaces an entry of the new folder, and refuses a file where a folder is written.
+    /// replaces an entry of the new folder, makes no folder that only dropped files filled,
+    /// keeps the user's empty folders, and refuses a file where a folder is written.
     #[test]
     fn carry_over_keeps_and_never_replaces() {
         let base = std::env::temp_dir().join(format!("mbdbench-swap-{}", std::process::id()));
@@ -177,6 +192,7 @@ mod tests {
             ],
         );
         tree(&new, &[("summary.json", "new summary")]);
+        std::fs::create_dir_all(old.join("empty/inner")).unwrap();
         let carried = carry_over(&old, &new, &|rel: &str| {
             if rel.starts_with("series/") {
                 Keep::No
@@ -193,6 +209,9 @@ mod tests {
         assert_eq!(read("notes.txt"), "user");
         assert_eq!(read("deep/user/file"), "deep");
         assert!(!new.join("series/a/x.json").exists());
+        // The folders of the dropped files are not made; the user's empty ones are.
+        assert!(!new.join("series").exists());
+        assert!(new.join("empty/inner").is_dir());
         // A file of the new folder where the old one has a folder is in the way.
         std::fs::remove_dir_all(new.join("deep")).unwrap();
         tree(&new, &[("deep", "a file now")]);

@@ -367,24 +367,41 @@ fn safe_chars(component: &str) -> String {
     }
 }
 
-/// Writes `out/index.html`, `out/summary.md` and `out/svg/<case>/...svg`.
+/// What a report adds to the summary's runs, and whether its plots are also written as files.
+#[derive(Default)]
+pub struct Extras<'a> {
+    /// The gates' rows: they colour the matrices and add a gate table per case.
+    pub gate_rows: Option<&'a [GateRow]>,
+    /// The stability study: its part of each case it covers.
+    pub stability: Option<stability::Source<'a>>,
+    /// The recommendation (`crate::advise`): the first thing on the page and in `summary.md`.
+    pub advice: Option<crate::advise::Advice>,
+    /// Also write every plot as `svg/<case>/...svg` (`mbdbench report --svg`). Off by default:
+    /// the page inlines every plot, and the files would double the plots' bytes in a report
+    /// that must stay within its size budget.
+    pub svg_files: bool,
+}
+
+/// Writes `out/index.html`, `out/summary.md` and, with `extras.svg_files`,
+/// `out/svg/<case>/...svg`.
 ///
 /// `series_root` is the directory of the series files (`<summary dir>/series`, holding
-/// `<case>/<scene>/<id>.json`; the summary's directory also works). `gate_rows`, when given,
-/// colour the matrices and add a gate table per case. `stability`, when given, adds the
-/// stability study's part to each case it covers. `advice`, when given, is the first thing
-/// on the page and in `summary.md`: a table of the recommendation (`crate::advise`).
+/// `<case>/<scene>/<id>.json`; the summary's directory also works).
 pub fn write_report(
     summary: &Summary,
     series_root: &Path,
     cases: &[Case],
-    gate_rows: Option<&[GateRow]>,
-    stability: Option<stability::Source>,
-    advice: Option<crate::advise::Advice>,
+    extras: Extras,
     out: &Path,
 ) -> Result<ReportFiles, ReportError> {
-    let mut page = build_page(summary, series_root, cases, gate_rows, stability);
-    page.advice = advice;
+    let mut page = build_page(
+        summary,
+        series_root,
+        cases,
+        extras.gate_rows,
+        extras.stability,
+    );
+    page.advice = extras.advice;
     let mut staging = crate::output::Staging::begin(out, crate::output::Writer::Report)
         .map_err(ReportError::Output)?;
     let mut write = |rel: &str, bytes: &[u8]| -> Result<PathBuf, ReportError> {
@@ -392,7 +409,7 @@ pub fn write_report(
         Ok(out.join(rel))
     };
     let mut svgs = vec![];
-    for c in &page.cases {
+    for c in page.cases.iter().filter(|_| extras.svg_files) {
         let figs = c.across.iter().chain(c.scenes.iter().flat_map(|s| {
             s.work_precision
                 .iter()

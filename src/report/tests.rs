@@ -30,7 +30,11 @@ fn page_is_self_contained_and_complete() {
     fixture::write_series(&dir.join("series"), &s, |_| false);
     let cases = crate::case::embedded().unwrap();
     let out = dir.join("report");
-    let files = write_report(&s, &dir.join("series"), &cases, None, None, None, &out).unwrap();
+    let extras = Extras {
+        svg_files: true,
+        ..Default::default()
+    };
+    let files = write_report(&s, &dir.join("series"), &cases, extras, &out).unwrap();
     let html = std::fs::read_to_string(&files.index_html).unwrap();
     assert_eq!(render_check(&html), Vec::<String>::new());
     for t in html::start_tags(&html) {
@@ -161,7 +165,7 @@ fn failed_na_and_missing_series_render() {
     let dir = fixture::temp_dir("missing");
     let out = dir.join("report");
     // No series at all, and no case files.
-    let files = write_report(&s, &dir.join("nowhere"), &[], None, None, None, &out).unwrap();
+    let files = write_report(&s, &dir.join("nowhere"), &[], Extras::default(), &out).unwrap();
     let html = std::fs::read_to_string(&files.index_html).unwrap();
     assert_eq!(render_check(&html), Vec::<String>::new());
     let sec = case_html(&html, fixture::CASE);
@@ -185,7 +189,7 @@ fn failed_na_and_missing_series_render() {
     assert!(sec.contains("written on SO(3) x R^3 (chart so3) only"));
     // Only one scene's series present: that scene's time series are drawn.
     fixture::write_series(&dir.join("series"), &s, |r| r.key.scene == "large");
-    let files = write_report(&s, &dir.join("series"), &[], None, None, None, &out).unwrap();
+    let files = write_report(&s, &dir.join("series"), &[], Extras::default(), &out).unwrap();
     let html = std::fs::read_to_string(&files.index_html).unwrap();
     let page = build_page(&s, &dir.join("series"), &[], None, None);
     // The predicate names the records whose series are left out: those of `large`.
@@ -226,7 +230,7 @@ fn failed_na_and_missing_series_render() {
     let mut empty = s.clone();
     empty.records.clear();
     empty.fits.clear();
-    let files = write_report(&empty, &dir.join("series"), &[], None, None, None, &out).unwrap();
+    let files = write_report(&empty, &dir.join("series"), &[], Extras::default(), &out).unwrap();
     let html = std::fs::read_to_string(&files.index_html).unwrap();
     assert_eq!(render_check(&html), Vec::<String>::new());
     assert!(html.contains("none (no data)"));
@@ -391,8 +395,40 @@ fn long_names_are_shortened() {
         r.key.case = a.clone();
     }
     let out = dir.join("out");
-    let files = write_report(&s, &dir.join("series"), &[], None, None, None, &out).unwrap();
+    let extras = Extras {
+        svg_files: true,
+        ..Default::default()
+    };
+    let files = write_report(&s, &dir.join("series"), &[], extras, &out).unwrap();
     assert!(!files.svgs.is_empty());
     assert!(files.svgs.iter().all(|p| p.exists()));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The plot files are written only on request (`Extras::svg_files`): by default the page
+/// alone holds the plots, and a later report without them leaves no file of the earlier one.
+#[test]
+fn svg_files_only_on_request() {
+    let s = fixture::summary();
+    let dir = fixture::temp_dir("svg-files");
+    fixture::write_series(&dir.join("series"), &s, |_| false);
+    let out = dir.join("report");
+    let on = Extras {
+        svg_files: true,
+        ..Default::default()
+    };
+    let files = write_report(&s, &dir.join("series"), &[], on, &out).unwrap();
+    assert!(!files.svgs.is_empty() && out.join("svg").is_dir());
+    let files = write_report(&s, &dir.join("series"), &[], Extras::default(), &out).unwrap();
+    assert!(files.svgs.is_empty());
+    assert!(
+        !out.join("svg").exists(),
+        "the earlier report's plot files are gone"
+    );
+    let html = std::fs::read_to_string(&files.index_html).unwrap();
+    assert!(
+        html.matches("<svg").count() > 0,
+        "the page still inlines its plots"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,6 +1,6 @@
 //! Tests of the stability section: tables, plots and facts of each part from fixture records.
 use super::*;
-use crate::report::{fixture, html, markdown, render_check, write_report};
+use crate::report::{Extras, fixture, html, markdown, render_check, write_report};
 use crate::summary::{Env, FitRecord, Summary, run_id};
 
 fn rec(case: &str, scene: &str, p: &str, i: &str, metrics: &[(&str, Option<f64>)]) -> Record {
@@ -181,7 +181,18 @@ fn stability_fixture_renders_tables_and_plots() {
         summary: &st,
         dir: &dir,
     };
-    let files = write_report(&s, &dir.join("series"), &[], None, Some(src), None, &out).unwrap();
+    let files = write_report(
+        &s,
+        &dir.join("series"),
+        &[],
+        Extras {
+            stability: Some(src),
+            svg_files: true,
+            ..Default::default()
+        },
+        &out,
+    )
+    .unwrap();
     let page = std::fs::read_to_string(&files.index_html).unwrap();
     assert_eq!(render_check(&page), Vec::<String>::new());
     for t in html::start_tags(&page) {
@@ -407,12 +418,13 @@ fn corrupt_stability_json_warns_and_report_goes_on() {
         &s,
         &dir.join("series"),
         &[],
-        None,
-        st.as_ref().map(|s| Source {
-            summary: s,
-            dir: &dir,
-        }),
-        None,
+        Extras {
+            stability: st.as_ref().map(|s| Source {
+                summary: s,
+                dir: &dir,
+            }),
+            ..Default::default()
+        },
         &dir.join("report"),
     )
     .unwrap();
