@@ -105,6 +105,12 @@ pub struct ParamGroup {
 pub enum Quantity {
     /// The relative energy drift (`metrics::energy_drift::relative`).
     Energy,
+    /// The energy balance of a family whose series' `energy` is the balance's residual
+    /// `E(t) = kinetic + recoverable strain + dissipated - input work` (zero at t = 0):
+    /// `|E(t)| / energy_scale` on a log axis; `what` is the caption's sentence saying how
+    /// the books are kept. Runs whose `energy` is not finite (no energy books: a scene
+    /// without dynamics) have no line, and a scene where no run has one has no panel.
+    Balance { what: &'static str },
     /// The chart's constraint residual (absent for charts without one); `what` is the
     /// caption's sentence saying what it is for the family's charts.
     Constraint { what: &'static str },

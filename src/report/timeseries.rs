@@ -2,7 +2,8 @@
 //! times): the relative energy drift `|E(t) - E0| / max(|E0|, energy_scale)` (the same
 //! normalisation as `energy_drift_max`, docs/schemas.md) and the chart's own constraint
 //! residual (`||q|^2 - 1|`, `|R^T R - I|`, the dual quaternion's two; none for minimal charts),
-//! both on a log axis against linear time; and a family's own column (`Series::tracks`, the
+//! both on a log axis against linear time; the energy balance `|K + U + D - W| / energy_scale`
+//! of a family whose series' `energy` is the balance's residual (the fiber column's pulse); and a family's own column (`Series::tracks`, the
 //! beam's tip deflection) on a linear axis against the reference's, drawn as an ink line.
 //!
 //! Which run of a variant: its coarsest *completed* ladder point (largest `dt`, loosest
@@ -81,6 +82,7 @@ pub fn plot(
 ) -> Option<Plot> {
     let (id, name, y_label) = match q {
         Quantity::Energy => ("energy", "energy drift", "|E - E0| / max(|E0|, E_scale)"),
+        Quantity::Balance { .. } => ("balance", "energy balance", "|K + U + D - W| / E_scale"),
         Quantity::Constraint { .. } => ("constraint", "constraint residual", "constraint residual"),
         Quantity::Track { .. } => return None,
     };
@@ -89,6 +91,7 @@ pub fn plot(
     let mut missing: Vec<String> = vec![];
     let mut unconstrained: Vec<String> = vec![];
     let mut failed: Vec<String> = vec![];
+    let mut unbooked = 0usize;
     for v in sv.variants.iter().filter(|v| sel.admits(v)) {
         let Some(r) = drawn(cv, v) else {
             missing.push(format!("{} (no completed run)", v.key.label()));
@@ -103,8 +106,19 @@ pub fn plot(
                 .into_iter()
                 .map(Some)
                 .collect(),
+            Quantity::Balance { .. } => {
+                let scale = cv.energy_scale.filter(|x| *x > 0.0).unwrap_or(1.0);
+                s.energy
+                    .iter()
+                    .map(|e| e.is_finite().then(|| e.abs() / scale))
+                    .collect()
+            }
             _ => s.constraint.clone(),
         };
+        if matches!(q, Quantity::Balance { .. }) && ys.iter().all(Option::is_none) {
+            unbooked += 1;
+            continue;
+        }
         if matches!(q, Quantity::Constraint { .. }) && ys.iter().all(Option::is_none) {
             if !unconstrained.contains(&v.key.param) {
                 unconstrained.push(v.key.param.clone());
@@ -133,8 +147,17 @@ pub fn plot(
         .iter()
         .map(|(step, integ)| format!("{step} ({})", integ.join(", ")))
         .collect();
+    if lines.is_empty() && unbooked > 0 {
+        return None;
+    }
     let mut caption = match q {
         Quantity::Constraint { what } => what.to_string(),
+        Quantity::Balance { what } => format!(
+            "The energy balance |K + U + D - W| over the case's energy scale ({} J) at the \
+             score times: kinetic, recoverable strain and dissipated energy against the input \
+             work. {what} ",
+            cv.energy_scale.map(data::num).unwrap_or_else(|| "1".into())
+        ),
         _ => format!(
             "Relative energy drift |E(t) - E0| / max(|E0|, {}) at the score times. ",
             cv.energy_scale.map(data::num).unwrap_or_else(|| "0".into())

@@ -608,9 +608,16 @@ impl FiberProblem {
         );
         let series = Series {
             t: scored.iter().map(|o| o.t).collect(),
+            // The balance's residual where the scene keeps energy books (the pulse; the
+            // report's `Quantity::Balance`), else none.
             energy: scored
                 .iter()
-                .map(|o| o.energy_kinetic + o.energy_strain + o.energy_dissipated - o.work_input)
+                .map(|o| match kind {
+                    "dynamic" => {
+                        o.energy_kinetic + o.energy_strain + o.energy_dissipated - o.work_input
+                    }
+                    _ => f64::NAN,
+                })
                 .collect(),
             constraint: vec![None; scored.len()],
             conditioning: vec![f64::NAN; scored.len()],
