@@ -226,8 +226,9 @@ pub struct Case {
 #[derive(Debug, Clone, PartialEq)]
 pub struct StabilitySpec {
     /// The horizon `t_h` in periods of the scene's fastest linearised mode
-    /// (`model::linear_modes`).
-    pub periods: f64,
+    /// (`model::linear_modes`) or first elastic mode (the seam's search); required for scenes
+    /// stepped in time, unused by load paths (a static scene's search spans its whole path).
+    pub periods: Option<f64>,
     /// rad: the accuracy bound of `largest_accurate_dt` (max geodesic rotation error over the
     /// score times of the horizon); the rigid body's files must give it (its loader checks),
     /// families without a rotation have none.
@@ -624,7 +625,10 @@ impl Ctx<'_> {
     }
 
     fn stability(&self, st: RawStability, scenes: &[Scene]) -> Res<StabilitySpec> {
-        let periods = self.positive("stability.periods", st.periods, "a number of periods")?;
+        let periods = st
+            .periods
+            .map(|x| self.positive("stability.periods", x, "a number of periods"))
+            .transpose()?;
         let rotation_error_max = st
             .rotation_error_max
             .map(|x| {

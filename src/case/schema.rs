@@ -11,7 +11,7 @@ use super::{RawGate, RawLadders, ReferenceKind};
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawStability {
-    pub(super) periods: f64,
+    pub(super) periods: Option<f64>,
     pub(super) rotation_error_max: Option<f64>,
     #[serde(default)]
     pub(super) quick: Vec<String>,

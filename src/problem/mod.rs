@@ -222,6 +222,10 @@ pub struct Family {
     pub compile: Compile,
     /// The family's figures in the report.
     pub figures: &'static figures::Figures,
+    /// The integrators the quick tier of the seam's step search covers
+    /// (`stability::seam_search`; the full tier searches every fixed-step integrator). A
+    /// family with a study of its own (the rigid body) leaves it empty.
+    pub stability_quick: &'static [&'static str],
 }
 
 impl std::fmt::Debug for Family {
@@ -330,6 +334,14 @@ pub trait Problem: Send + Sync {
     /// `stability::search`) or a scene without such a mode.
     fn first_period(&self) -> Option<f64> {
         None
+    }
+    /// For a static scene whose `t` is a load parameter from 0 to `t_end` (not time): makes
+    /// the whole path one sample and score interval, so that every load step dividing `t_end`
+    /// runs (errors against references are then absent), and returns true. The seam's step
+    /// search then finds the scene's largest converging load step, up to the whole path in
+    /// one step (`stability::seam_search`). Scenes stepped in time return false, unchanged.
+    fn as_load_path(&mut self) -> bool {
+        false
     }
     /// One run. `Err` when the run cannot start (e.g. its step count is over the budget).
     fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String>;

@@ -67,26 +67,6 @@ impl Part {
 pub const QUICK_PARAMS: &[&str] = &["so3"];
 pub const QUICK_INTEGRATORS: &[&str] = &["euler", "rk4", "simo_wong"];
 
-/// The integrators of the quick tier's seam search (the quick scenes' other variants are
-/// searched in the full tier): the explicit method whose limit the search measures and the
-/// implicit ones of the structural and ODE forms.
-pub const SEAM_QUICK_INTEGRATORS: &[&str] =
-    &["rk4", "newmark", "implicit_midpoint", "gen_alpha_i3"];
-
-/// `filter` narrowed to the seam search's quick-tier integrators; None when the user's
-/// integrators and these do not meet (nothing to search).
-pub fn seam_quick_filter(
-    filter: &crate::suite::VariantFilter,
-) -> Option<crate::suite::VariantFilter> {
-    let mut f = filter.clone();
-    f.integrator = SEAM_QUICK_INTEGRATORS
-        .iter()
-        .filter(|x| filter.integrator.is_empty() || filter.integrator.iter().any(|u| u == *x))
-        .map(|x| x.to_string())
-        .collect();
-    (!f.integrator.is_empty()).then_some(f)
-}
-
 /// `filter` narrowed to the quick tier's variants.
 pub fn quick_filter(filter: &crate::suite::VariantFilter) -> crate::suite::VariantFilter {
     narrowed(filter, QUICK_PARAMS, QUICK_INTEGRATORS)
@@ -232,16 +212,9 @@ pub fn run_study(
         t_end: None,
     }
     .deduped();
-    // The step search of the families without a study of their own, through the seam.
-    let seam_filter = if opts.quick {
-        seam_quick_filter(filter)
-    } else {
-        Some(filter.clone())
-    };
-    let mut all = match seam_filter {
-        Some(f) => seam_search::study(cases, case_filter, scene_filter, &f, opts)?,
-        None => Part::default(),
-    };
+    // The step search of the families without a study of their own, through the seam (the
+    // quick tier: each family's `stability_quick` integrators).
+    let mut all = seam_search::study(cases, case_filter, scene_filter, filter, opts)?;
     // The parts below are the rigid body's (each file's FAMILIES).
     let Some((cases, case_filter, scene_filter)) =
         part_cases(cases, search::FAMILIES, case_filter, scene_filter)

@@ -3,8 +3,12 @@
 //! same run the suite makes, so nothing here names a family's variants.
 //!
 //! Horizon: `t_h` = `[stability].periods` periods of the scene's first (slowest) mode
-//! (`Problem::first_period`; the beam's first clamped-free bending period), rounded up to a
-//! whole number of score intervals. The steps probed are `dt = s / n` with `s` the scene's
+//! (`Problem::first_period`; the beam's first clamped-free bending period, the fiber column's
+//! first mode after its axial load), rounded up to a whole number of score intervals. A static
+//! scene's load path (`Problem::as_load_path`, the fiber column's elastica and roll-up) is
+//! searched over the whole path instead, `t_h = t_end`, with the path as its one sample
+//! interval: its largest stable step is the largest load step with which Newton converges at
+//! every step, up to the whole path in one step (the cap). The steps probed are `dt = s / n` with `s` the scene's
 //! sample interval (which divides its score interval and its breakpoints, checked at load), so
 //! every probe lands on every sample and breakpoint as the family's fixed-step loops require.
 //! A probe is *stable* when the run ends without a typed failure (the family's divergence
@@ -40,10 +44,10 @@ pub struct SeamScene {
     pub case: String,
     pub scene: String,
     pub problem: Box<dyn Problem>,
-    /// `t_h` (s).
+    /// `t_h` (s; the load parameter's end for a load path).
     pub horizon: f64,
-    /// The first mode's period (s).
-    pub period: f64,
+    /// The first mode's period (s); None for a load path.
+    pub period: Option<f64>,
     /// The sample interval `s` (s): probes step `s / n`.
     pub unit: f64,
     /// The largest `n` within the tier's step budget.
@@ -51,23 +55,40 @@ pub struct SeamScene {
 }
 
 impl SeamScene {
-    /// The search scene of `scene` of `c` (whose `[stability]` is `periods`); an error naming
-    /// the file when the family gives the scene no first period.
-    pub fn new(c: &Case, scene: &str, periods: f64, quick: bool) -> Result<SeamScene, String> {
+    /// The search scene of `scene` of `c` (whose `[stability]` gives `periods`); an error
+    /// naming the file when a scene stepped in time has no first period or no `periods`.
+    pub fn new(
+        c: &Case,
+        scene: &str,
+        periods: Option<f64>,
+        quick: bool,
+    ) -> Result<SeamScene, String> {
         let family = problem::family_of(c);
         let s = c
             .scene(scene)
             .ok_or_else(|| format!("{}: no scene {scene}", c.file))?;
         let mut p = (family.compile)(c, s).map_err(|e| e.to_string())?;
-        let period = p.first_period().ok_or_else(|| {
-            format!(
-                "{}: [stability]: scene {scene} has no first mode (model {} gives no period)",
-                c.file, family.model
-            )
-        })?;
-        let every = p.score_every();
-        let horizon = (periods * period / every).ceil().max(1.0) * every;
-        p.set_t_end(horizon);
+        let (horizon, period) = if p.as_load_path() {
+            (p.t_end(), None)
+        } else {
+            let period = p.first_period().ok_or_else(|| {
+                format!(
+                    "{}: [stability]: scene {scene} has no first mode (model {} gives no period)",
+                    c.file, family.model
+                )
+            })?;
+            let periods = periods.ok_or_else(|| {
+                format!(
+                    "{}: [stability]: key `periods` is required (scene {scene} is stepped in \
+                     time; its horizon is a number of first-mode periods)",
+                    c.file
+                )
+            })?;
+            let every = p.score_every();
+            let horizon = (periods * period / every).ceil().max(1.0) * every;
+            p.set_t_end(horizon);
+            (horizon, Some(period))
+        };
         let unit = p.sample_every();
         let intervals = (horizon / unit).round().max(1.0) as u64;
         let budget = if quick { QUICK_MAX_STEPS } else { MAX_STEPS };
@@ -116,10 +137,13 @@ impl SeamScene {
 
     /// The record of a search (per variant: no `dt`/`tol`).
     pub fn record(&self, v: &Variant, found: &Found) -> Record {
-        let cap = format!(
-            "one step per sample interval, dt = {} s; t_h = {:.6} s",
-            self.unit, self.horizon
-        );
+        let cap = match self.period {
+            Some(_) => format!(
+                "one step per sample interval, dt = {} s; t_h = {:.6} s",
+                self.unit, self.horizon
+            ),
+            None => format!("the whole load path in one step, dt = {}", self.unit),
+        };
         let mut r = Record::new(
             RunKey::new(
                 &self.case,
@@ -134,8 +158,10 @@ impl SeamScene {
         r.metrics = BTreeMap::from([
             ("largest_stable_dt".to_string(), found.value),
             ("stability_horizon".to_string(), Some(self.horizon)),
-            ("first_period".to_string(), Some(self.period)),
         ]);
+        if let Some(period) = self.period {
+            r.metrics.insert("first_period".to_string(), Some(period));
+        }
         r.metric_reasons
             .insert("largest_stable_dt".into(), found.reason_with(&cap));
         r
@@ -170,7 +196,8 @@ pub fn scenes(
 }
 
 /// Searches every admitted fixed-step variant of `scenes` in parallel over `opts.jobs`
-/// threads; records per scene in the family's variant order.
+/// threads (the quick tier: those of the family's `stability_quick` integrators); records per
+/// scene in the family's variant order.
 pub fn study(
     cases: &[Case],
     case_filter: &[String],
@@ -181,8 +208,10 @@ pub fn study(
     let scenes = scenes(cases, case_filter, scene_filter, opts.quick)?;
     let mut jobs: Vec<(usize, &'static Variant)> = vec![];
     for (i, s) in scenes.iter().enumerate() {
-        for v in (s.problem.family().variants)() {
+        let family = s.problem.family();
+        for v in (family.variants)() {
             if filter.admits(v.param, v.integrator, v.formulation)
+                && (!opts.quick || family.stability_quick.contains(&v.integrator))
                 && !v.info.adaptive
                 && s.problem.na_reason(v).is_none()
             {
@@ -211,6 +240,46 @@ mod tests {
         SeamScene::new(c, "spinup_w4", periods, true).unwrap()
     }
 
+    /// A static scene's load path is searched over the whole path (`t_h = t_end`, no first
+    /// period): on the stiffest elastica Newton with the exponential update (`so3`) does not
+    /// converge in one load step and does in two, while the quaternion projected after an
+    /// additive update, whose retraction turns by `2 atan(|dw| / 2)` instead of `|dw|`,
+    /// converges in one (bounded up to the cap).
+    #[test]
+    fn load_path_largest_converging_step() {
+        let cases = crate::case::embedded().unwrap();
+        let c = cases
+            .iter()
+            .find(|c| c.name == "fiber_column_static")
+            .unwrap();
+        let s = SeamScene::new(c, "elastica_p10", None, true).unwrap();
+        assert_eq!((s.horizon, s.unit, s.period), (1.0, 1.0, None));
+        let family = crate::problem::find_family("fiber_column").unwrap();
+        let so3 = family.find("so3", "newton_load", "force_based").unwrap();
+        let found = s.search(so3);
+        assert_eq!(found.value, Some(0.5), "{found:?}");
+        let (_, limit) = found.limit.clone().unwrap();
+        assert_eq!(limit.kind, FailureKind::NewtonFailure);
+        let r = s.record(so3, &found);
+        assert!(!r.metrics.contains_key("first_period"));
+        let quat = family
+            .find("quat_proj", "newton_load", "force_based")
+            .unwrap();
+        let found = s.search(quat);
+        assert!(found.capped && found.value == Some(1.0), "{found:?}");
+        assert!(
+            s.record(quat, &found).metric_reasons["largest_stable_dt"]
+                .contains("the whole load path in one step")
+        );
+        // A scene stepped in time needs its horizon in periods: refused by key without it.
+        let beam = cases.iter().find(|c| c.name == "flexible_beam").unwrap();
+        let e = SeamScene::new(beam, "spinup_w4", None, true).err().unwrap();
+        assert!(
+            e.contains("`periods` is required") && e.contains(&beam.file),
+            "{e}"
+        );
+    }
+
     fn variant(integrator: &str, formulation: &str) -> &'static Variant {
         crate::problem::find_family("flexible_beam")
             .unwrap()
@@ -228,7 +297,8 @@ mod tests {
     #[test]
     fn beam_limits_match_linear_theory() {
         let s = scene();
-        assert!((s.period - 1.6543).abs() < 1e-3, "{}", s.period);
+        let period = s.period.unwrap();
+        assert!((period - 1.6543).abs() < 1e-3, "{period}");
         assert!((s.horizon - 33.1).abs() < 1e-9, "{}", s.horizon);
         let omega = std::f64::consts::FRAC_PI_2 * (2.8e7_f64 / (1.2 * 100.0)).sqrt();
         let theory = 2.785 / omega;

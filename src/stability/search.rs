@@ -112,10 +112,17 @@ impl StudyScene {
                     c.file, plan.scene
                 )
             })?;
+        let periods = spec.periods.ok_or_else(|| {
+            format!(
+                "{}: [stability]: key `periods` is required (the horizon in periods of the \
+                 fastest mode)",
+                c.file
+            )
+        })?;
         Ok(Some(Self::with_horizon(
             plan,
             period,
-            spec.periods * period,
+            periods * period,
             spec,
         )))
     }

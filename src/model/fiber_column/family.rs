@@ -197,6 +197,8 @@ pub static FAMILY: Family = Family {
     inputs: super::case::inputs,
     compile,
     figures: &FIGURES,
+    // The four schemes of the pulse and the static scenes' load control.
+    stability_quick: &["newmark", "hht", "gen_alpha", "midpoint", "newton_load"],
 };
 
 fn static_na_reason(param: &str, integrator: &str, formulation: &str) -> String {

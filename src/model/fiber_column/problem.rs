@@ -255,6 +255,15 @@ impl Problem for FiberProblem {
         }
         None
     }
+    fn as_load_path(&mut self) -> bool {
+        if self.loading().kind() != "static" {
+            return false;
+        }
+        let g = &mut self.setup.grid;
+        (g.sample_every, g.score_every) = (g.t_end, g.t_end);
+        self.reference = None;
+        true
+    }
     fn first_period(&self) -> Option<f64> {
         let Loading::Pulse { mass, .. } = *self.loading() else {
             return None;

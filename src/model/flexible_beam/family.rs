@@ -164,6 +164,9 @@ pub static FAMILY: Family = Family {
     inputs: super::case::inputs,
     compile,
     figures: &FIGURES,
+    // The explicit method whose limit the search measures and the implicit ones of the
+    // structural and ODE forms.
+    stability_quick: &["rk4", "newmark", "implicit_midpoint", "gen_alpha_i3"],
 };
 
 /// The formulations, in report order.

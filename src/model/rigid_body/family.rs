@@ -23,6 +23,7 @@ pub static FAMILY: Family = Family {
     inputs: super::case::inputs,
     compile,
     figures: &super::figures::FIGURES,
+    stability_quick: &[],
 };
 
 /// The metrics of rigid-body cases (cases/README.md, "Rigid-body metrics").

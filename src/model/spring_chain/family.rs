@@ -94,6 +94,7 @@ pub static FAMILY: Family = Family {
     inputs: super::case::inputs,
     compile,
     figures: &FIGURES,
+    stability_quick: &["rk4"],
 };
 
 /// A monomorphised run.
