@@ -43,6 +43,8 @@ pub mod problem;
 mod pulse_tests;
 pub mod quadrature;
 pub mod reference;
+#[cfg(test)]
+mod reference_tests;
 pub mod run;
 pub mod run_dynamic;
 #[cfg(test)]
