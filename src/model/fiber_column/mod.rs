@@ -34,6 +34,8 @@ pub mod dynamic;
 #[cfg(test)]
 mod dynamic_tests;
 pub mod elastica;
+#[cfg(test)]
+mod elastica_opensees_tests;
 pub mod family;
 pub mod krylov;
 pub mod layout;
