@@ -187,11 +187,21 @@ pub(super) fn failure(t: f64, e: NewtonFailure) -> Failure {
     Failure::new(FailureKind::NewtonFailure, t, e.to_string())
 }
 
+/// The top's position at a step: displacement across and along the axis (m), turn (rad).
+#[derive(Default, Clone, Copy)]
+struct Top {
+    across: f64,
+    along: f64,
+    turn: f64,
+}
+
 /// The run's bookkeeping: counters, the input work and the samples.
 pub(super) struct Log {
     pub(super) stats: Stats,
     pub(super) work: f64,
-    last: (f64, f64, f64, f64),
+    /// The top's displacement across and along the axis and its turn at the last step,
+    /// for the input work's trapezoid.
+    last: Top,
     pub(super) samples: Vec<ColumnObs>,
     pub(super) peak_load: f64,
     keep: Keep,
@@ -202,7 +212,7 @@ impl Log {
         Log {
             stats: Stats::default(),
             work: 0.0,
-            last: (0.0, 0.0, 0.0, 0.0),
+            last: Top::default(),
             samples: vec![],
             peak_load: 0.0,
             keep,
@@ -290,12 +300,11 @@ pub fn run_static<C: RotationChart>(
     log.peak_load = log.peak_load.max(value.abs());
     let mut base = nalgebra::Vector3::zeros();
     let first = log.observe(&col, 0.0, base);
-    log.last = (
-        first.top_displacement,
-        first.top_axial,
-        first.top_rotation,
-        0.0,
-    );
+    log.last = Top {
+        across: first.top_displacement,
+        along: first.top_axial,
+        turn: first.top_rotation,
+    };
     if keep == Keep::Samples {
         log.samples.push(first);
     }
@@ -328,15 +337,19 @@ pub fn run_static<C: RotationChart>(
         // The input work, trapezoid on the step.
         let (v, nz) = (-base.x, -base.z);
         log.work += match (&s.scene.loading, load_dof) {
-            (Loading::TipMoment(_), _) => 0.5 * (prev_load.0 + t * value) * (turn - log.last.2),
-            (_, Some(_)) => 0.5 * (prev_load.0 + t * value) * (d.x - log.last.0),
+            (Loading::TipMoment(_), _) => 0.5 * (prev_load.0 + t * value) * (turn - log.last.turn),
+            (_, Some(_)) => 0.5 * (prev_load.0 + t * value) * (d.x - log.last.across),
             _ => {
-                0.5 * (prev_load.1 + v) * (d.x - log.last.0)
-                    + 0.5 * (prev_load.2 + nz) * (d.z - log.last.1)
+                0.5 * (prev_load.1 + v) * (d.x - log.last.across)
+                    + 0.5 * (prev_load.2 + nz) * (d.z - log.last.along)
             }
         };
         prev_load = (t * value, v, nz);
-        log.last = (d.x, d.z, turn, 0.0);
+        log.last = Top {
+            across: d.x,
+            along: d.z,
+            turn,
+        };
         if prescribed.is_some() {
             log.peak_load = log.peak_load.max(v.abs());
         }
