@@ -2,8 +2,8 @@
 //! and optionally the gate's rows, writes `out/index.html` (one self-contained page, every
 //! plot an inline SVG with an HTML legend, no external `src`/`href`, one small inline script:
 //! `script`), `out/summary.md` (the answer for a CI log or PR comment: the gate verdict, the
-//! recommendation, a line per case) and every plot with its own legend as
-//! `out/svg/<case>/[<scene>/]<plot>.svg`.
+//! recommendation, a line per case) and, on request (`Extras::svg_files`, `report --svg`),
+//! every plot with its own legend as `out/svg/<case>/[<scene>/]<plot>.svg`.
 //!
 //! The figures are the case's family's (`problem::figures`: which selections of variants each
 //! kind of plot draws, how to read the markers, the chart group the narrative contrasts); this
