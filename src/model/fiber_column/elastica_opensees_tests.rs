@@ -1,7 +1,8 @@
 //! The elastica against OpenSees' corotational elements on the same meshes: the tips stored
 //! in `references/fiber_column/opensees/elastica.json` (`forceBeamColumn`, elastic section,
 //! 5 Lobatto points; 10 and 40 elements; 20 load steps to an energy increment of 1e-24) and
-//! the exact elliptic-integral tips stored beside them.
+//! the exact tips stored beside them (shooting; they agree with the suite's elliptic-integral
+//! tips to 5.1e-15 L), read through the manifest check of the external references.
 use crate::problem::{self, Stepping, Want};
 
 /// With 10 (`force_based`) and 40 (`force_based_fine`) elements, the suite's tip error on
@@ -10,9 +11,14 @@ use crate::problem::{self, Stepping, Want};
 /// two agree to 2e-10), and both are within the requirement (1.5e-3 L and 1e-4 L).
 #[test]
 fn elastica_at_least_as_accurate_as_opensees() {
-    let path = crate::cli::default_references().join("fiber_column/opensees/elastica.json");
-    let file: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    let refs = crate::cli::default_references();
+    // Listed in the manifest with its hash, and carrying its own provenance.
+    let (bytes, _, _) = super::reference::read_listed(&refs, "elastica.json", "the elastica")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let file: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+    for k in ["tool", "command", "accuracy_claim", "cross_check"] {
+        assert!(file["provenance"][k].is_string(), "provenance.{k}");
+    }
     let cases = crate::case::embedded().unwrap();
     let case = cases
         .iter()
@@ -26,8 +32,7 @@ fn elastica_at_least_as_accurate_as_opensees() {
         ("10.0", "elastica_p10"),
     ] {
         let mut p = (family.compile)(case, case.scene(scene).unwrap()).unwrap();
-        p.attach_reference(&crate::cli::default_references())
-            .unwrap();
+        p.attach_reference(&refs).unwrap();
         let exact = &file["exact"][alpha];
         for (elements, formulation, bound) in
             [("10", "force_based", 1.5e-3), ("40", "force_based_fine", 1e-4)]

@@ -180,20 +180,17 @@ fn model_value(model: &serde_json::Value, path: &str) -> Option<f64> {
     path.split('.').try_fold(model, |v, k| v.get(k))?.as_f64()
 }
 
-/// Loads and checks the OpenSees reference of `scene` (module docs), sampled at the score
-/// times `k score_every`, `k = 0..=t_end/score_every`.
-pub fn load_external(
-    root: &Path,
-    scene: &str,
-    t_end: f64,
-    score_every: f64,
-    model: &ModelCheck,
-) -> Result<External, String> {
+/// The bytes of `file` under the OpenSees folder (`opensees_dir(root)`), its SHA-256 and
+/// path, checked against the folder's `MANIFEST.json`: the manifest's `provenance` block must
+/// name the tool, the command, the accuracy claim and the cross-check, and the file's hash
+/// must be the one it lists (else it was changed after generation). `what` names the
+/// reference in the error when the file cannot be read.
+pub fn read_listed(root: &Path, file: &str, what: &str) -> Result<(Vec<u8>, String, PathBuf), String> {
     let dir = opensees_dir(root);
-    let path = dir.join(format!("{scene}.json"));
+    let path = dir.join(file);
     let shown = path.display().to_string();
     let bytes = std::fs::read(&path).map_err(|e| {
-        format!("{shown}: {e}; the OpenSees reference of {scene} is made by references/fiber_column/opensees/generate.py")
+        format!("{shown}: {e}; the OpenSees reference of {what} is made by references/fiber_column/opensees/generate.py")
     })?;
     let sha = reference::sha256_hex(&bytes);
     let manifest_path = dir.join("MANIFEST.json");
@@ -215,7 +212,7 @@ pub fn load_external(
             ));
         }
     }
-    let key = format!("references/fiber_column/opensees/{scene}.json");
+    let key = format!("references/fiber_column/opensees/{file}");
     let listed = manifest
         .get("sha256")
         .and_then(|m| m.get(&key))
@@ -227,6 +224,20 @@ pub fn load_external(
              changed after it was generated"
         ));
     }
+    Ok((bytes, sha, path))
+}
+
+/// Loads and checks the OpenSees reference of `scene` (module docs), sampled at the score
+/// times `k score_every`, `k = 0..=t_end/score_every`.
+pub fn load_external(
+    root: &Path,
+    scene: &str,
+    t_end: f64,
+    score_every: f64,
+    model: &ModelCheck,
+) -> Result<External, String> {
+    let (bytes, sha, path) = read_listed(root, &format!("{scene}.json"), scene)?;
+    let shown = path.display().to_string();
     let f: OpenSeesFile =
         serde_json::from_slice(&bytes).map_err(|e| format!("{shown}: {e}"))?;
     if f.schema != OPENSEES_SCHEMA {
