@@ -13,9 +13,8 @@ fn mbdbench(args: &[&str]) {
         .unwrap();
     assert!(
         o.status.success(),
-        "mbdbench {args:?}: {}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
+        "mbdbench {args:?}: {}",
+        common::text(&o)
     );
 }
 

@@ -6,16 +6,10 @@
 //! exit 2); the quick run's folder is left as it was.
 mod common;
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+use common::text;
 
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
+use std::path::PathBuf;
+use std::process::Command;
 
 /// The main job's later steps read and write the folder its run wrote.
 #[test]

@@ -8,6 +8,8 @@
 //! stays within a pull-request comment.
 mod common;
 
+use common::text;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -16,14 +18,6 @@ fn mbdbench(args: &[&str]) -> Output {
         .args(args)
         .output()
         .unwrap()
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
 }
 
 fn last_line(o: &Output) -> String {

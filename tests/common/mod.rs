@@ -11,6 +11,15 @@ use mbdbench::plan;
 use mbdbench::suite::{self, RunOptions, VariantFilter};
 use mbdbench::summary::{Record, Summary};
 
+/// A process's standard output and error, in that order (for assertion messages).
+pub fn text(o: &std::process::Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
 /// A fresh temporary folder for one test.
 pub fn temp_dir(tag: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("mbdbench-test-{tag}-{}", std::process::id()));

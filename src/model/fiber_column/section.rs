@@ -237,9 +237,17 @@ impl FiberSection {
         k
     }
 
-    fn sum(&self, g: fn(&dyn Uniaxial) -> f64) -> f64 {
+    /// `sum_f A_f w_f`, the fibers' work densities (J/m).
+    fn work(&self) -> f64 {
         let mut total = 0.0;
-        each_group!(self, grp => grp.add_to(&mut total, |m| g(m)));
+        each_group!(self, g => g.add_to(&mut total, |m| m.work()));
+        total
+    }
+
+    /// `sum_f A_f u_f`, the fibers' recoverable energy densities (J/m).
+    fn recoverable(&self) -> f64 {
+        let mut total = 0.0;
+        each_group!(self, g => g.add_to(&mut total, |m| m.recoverable_energy()));
         total
     }
 }
@@ -346,7 +354,7 @@ impl Section {
     pub fn work(&self) -> f64 {
         match self {
             Section::Elastic(s) => 0.5 * s.e.dot(&(s.stiffness() * s.e)),
-            Section::Fiber(s) => s.sum(|m| m.work()),
+            Section::Fiber(s) => s.work(),
         }
     }
 
@@ -354,7 +362,7 @@ impl Section {
     pub fn recoverable(&self) -> f64 {
         match self {
             Section::Elastic(s) => 0.5 * s.e.dot(&(s.stiffness() * s.e)),
-            Section::Fiber(s) => s.sum(|m| m.recoverable_energy()),
+            Section::Fiber(s) => s.recoverable(),
         }
     }
 }
