@@ -22,9 +22,16 @@ pub enum Bound {
 pub enum Check {
     /// `metric` with `max` or `min`: the record's metric lies within the bound.
     Bound { metric: String, bound: Bound },
-    /// `expect = { status = "failed", kind, before }`: the run ended in a typed failure of
-    /// `kind` at `t <= before` (a variant known to fail, e.g. a model that diverges).
-    Expect { kind: FailureKind, before: f64 },
+    /// `expect = { status = "failed", kind, after, before }`: the run ended in a typed
+    /// failure of `kind` at `after < t <= before` (a variant known to fail, e.g. a model that
+    /// diverges). The lower bound names the cause: a failure that comes before the mechanism
+    /// the gate expects (a Newton failure at the first step from a budget set too small) is
+    /// another failure, whatever its kind.
+    Expect {
+        kind: FailureKind,
+        after: f64,
+        before: f64,
+    },
 }
 
 impl Check {
@@ -78,13 +85,14 @@ pub struct RawGate {
     commit: Option<String>,
 }
 
-/// `expect = { status, kind, before }`: every key required, checked in `Ctx::gate` (so a
-/// missing one is named like a bad one).
+/// `expect = { status, kind, after, before }`: every key required, checked in `Ctx::gate` (so
+/// a missing one is named like a bad one).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawExpect {
     status: Option<String>,
     kind: Option<String>,
+    after: Option<f64>,
     before: Option<f64>,
 }
 
@@ -238,7 +246,8 @@ impl Ctx<'_> {
 }
 
 impl Ctx<'_> {
-    /// `gates[i].expect`: status `"failed"`, a failure kind's name, a finite positive `before`.
+    /// `gates[i].expect`: status `"failed"`, a failure kind's name, a finite positive `before`
+    /// and a finite `after` with `0 <= after < before`.
     fn expect(&self, i: usize, e: RawExpect) -> Res<Check> {
         let key = |k: &str| format!("gates[{i}].expect.{k}");
         match e.status.as_deref() {
@@ -283,7 +292,30 @@ impl Ctx<'_> {
                 );
             }
         };
-        Ok(Check::Expect { kind, before })
+        let after = match e.after {
+            Some(x) if x.is_finite() && x >= 0.0 && x < before => x,
+            Some(x) => {
+                return self.err(
+                    key("after"),
+                    format!(
+                        "{x}; expected a time (or load parameter) from 0 up to `before` = \
+                         {before}, exclusive: the earliest the expected failure can come"
+                    ),
+                );
+            }
+            None => {
+                return self.err(
+                    key("after"),
+                    "missing; expected the time (or load parameter) after which the expected \
+                     failure comes (its cause: a failure before it is another failure)",
+                );
+            }
+        };
+        Ok(Check::Expect {
+            kind,
+            after,
+            before,
+        })
     }
 }
 

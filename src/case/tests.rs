@@ -556,8 +556,8 @@ fn other_validations() {
 
 /// An expected-failure gate (`expect`) loads as `Check::Expect`; a gate of neither or both
 /// forms, a metric-form key beside `expect`, a status other than "failed", an unknown failure
-/// kind, a `before` that is not finite and positive, or a missing or unknown `expect` key is
-/// an error naming that key.
+/// kind, a `before` that is not finite and positive, an `after` outside `[0, before)`, or a
+/// missing or unknown `expect` key is an error naming that key.
 #[test]
 fn expect_gate_shape() {
     let bare = without_gates(NINE);
@@ -567,12 +567,13 @@ fn expect_gate_shape() {
             "expect = {{ {inner} }}\nwhere = {{ formulation = \"body\" }}\n{extra}"
         ))
     };
-    let good = "status = \"failed\", kind = \"diverged\", before = 20.0";
+    let good = "status = \"failed\", kind = \"diverged\", after = 5.0, before = 20.0";
     let c = load_str(LABEL, &expect(good, "quick = true\ncommit = \"abc1234\"")).unwrap();
     assert_eq!(
         c.gates[0].check,
         crate::case::gate::Check::Expect {
             kind: crate::integrate::FailureKind::Diverged,
+            after: 5.0,
             before: 20.0
         }
     );
@@ -580,7 +581,10 @@ fn expect_gate_shape() {
     assert_eq!(c.gates[0].filter.formulation, ["body"]);
     // Every failure kind's name is accepted.
     for k in crate::integrate::FailureKind::ALL {
-        let inner = format!("status = \"failed\", kind = \"{}\", before = 1.0", k.name());
+        let inner = format!(
+            "status = \"failed\", kind = \"{}\", after = 0.0, before = 1.0",
+            k.name()
+        );
         let c = load_str(LABEL, &expect(&inner, "")).unwrap();
         assert!(
             matches!(c.gates[0].check, crate::case::gate::Check::Expect { kind, .. } if kind == k)
@@ -630,7 +634,19 @@ fn expect_gate_shape() {
         "status = \"failed\", kind = \"diverged\"",
         "gates[0].expect.before",
     );
-    bad(&format!("{good}, after = 1.0"), "gates[0].expect.after");
+    // `after` is required beside `before`, and lies in [0, before).
+    let e = bad(
+        "status = \"failed\", kind = \"diverged\", before = 20.0",
+        "gates[0].expect.after",
+    );
+    assert!(e.message.contains("missing"), "{e}");
+    for after in ["-1.0", "20.0", "25.0", "inf", "nan"] {
+        bad(
+            &format!("status = \"failed\", kind = \"diverged\", after = {after}, before = 20.0"),
+            "gates[0].expect.after",
+        );
+    }
+    bad(&format!("{good}, late = 1.0"), "gates[0].expect.late");
 }
 
 // The inputs hash covers the physics only: ladders, gates, title and sample_every do not

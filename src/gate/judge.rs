@@ -1,6 +1,6 @@
 //! The verdicts and texts of one gate row: a bound gate passes a record that ended `ok` with
 //! its metric within the bound; an expected-failure gate passes only a typed failure of its
-//! kind at or before its time (`Check::Expect`); the row's `metric` column, threshold and
+//! kind inside its window `after < t <= before` (`Check::Expect`); the row's `metric` column, threshold and
 //! value texts for both forms.
 use super::{EXPECT_PREFIX, GateRow, Verdict, failure_text, metric_value};
 use crate::case::Bound;
@@ -27,7 +27,13 @@ pub(super) fn threshold_text(c: &Check) -> String {
             bound: Bound::Min(t),
             ..
         } => format!(">= {t:e}"),
-        Check::Expect { before, .. } => format!("before {} s", time_text(*before)),
+        Check::Expect { after, before, .. } => {
+            format!(
+                "after {}, before {} s",
+                time_text(*after),
+                time_text(*before)
+            )
+        }
     }
 }
 
@@ -76,12 +82,30 @@ pub(super) fn judge_bound(row: &mut GateRow, r: &Record, metric: &str, bound: Bo
 }
 
 /// An expected-failure gate's verdict on a current, applicable record: a pass only for a
-/// typed failure of `kind` at `t <= before`.
-pub(super) fn judge_expect(row: &mut GateRow, r: &Record, kind: FailureKind, before: f64) {
-    let expected = format!("expected {} before {} s", kind.name(), time_text(before));
+/// typed failure of `kind` at `after < t <= before`.
+pub(super) fn judge_expect(
+    row: &mut GateRow,
+    r: &Record,
+    kind: FailureKind,
+    after: f64,
+    before: f64,
+) {
+    let expected = format!(
+        "expected {} after {} and before {} s",
+        kind.name(),
+        time_text(after),
+        time_text(before)
+    );
     match (&r.status, &r.failure) {
-        (Status::Failed, Some(f)) if f.kind == kind && f.t <= before => {
+        (Status::Failed, Some(f)) if f.kind == kind && f.t > after && f.t <= before => {
             row.verdict = Verdict::Pass;
+        }
+        (Status::Failed, Some(f)) if f.kind == kind && f.t <= after => {
+            row.note = format!(
+                "{} at t = {}, too early (another cause): {expected}",
+                kind.name(),
+                time_text(f.t)
+            );
         }
         (Status::Failed, Some(f)) if f.kind == kind => {
             row.note = format!(

@@ -17,11 +17,11 @@
 //! the value crosses the bound. Wall time is never gated; deterministic work counts
 //! (`WORK_METRICS`, read from the record's `stats`) may be.
 //!
-//! A gate of the other form, `expect = { status = "failed", kind, before }` (`Check::Expect`),
-//! is for a variant known to fail: it is expanded and matched the same way, and fails for the
-//! same missing, stale and `n/a` records, but a point passes only when its run ended in a typed
-//! failure of `kind` at `t <= before`; a run that ended `ok`, or failed otherwise or later,
-//! fails. Its row's value is the outcome as text (`outcome`: `diverged at t = 12`, `ok`).
+//! A gate of the other form, `expect = { status = "failed", kind, after, before }`
+//! (`Check::Expect`), is for a variant known to fail: it is expanded and matched the same way,
+//! and fails for the same missing, stale and `n/a` records, but a point passes only when its
+//! run ended in a typed failure of `kind` at `after < t <= before`; a run that ended `ok`, or
+//! failed otherwise, earlier (another cause) or later, fails. Its row's value is the outcome as text (`outcome`: `diverged at t = 12`, `ok`).
 //!
 //! Unusable input is a `GateError` (exit 2), never a failing row: a summary that cannot be read
 //! or parsed, an unknown metric name (of a bound gate), a `where` value that names no registered variant or no
@@ -701,7 +701,11 @@ fn judge(
     }
     match &g.check {
         Check::Bound { metric, bound } => judge_bound(&mut row, r, metric, *bound),
-        Check::Expect { kind, before } => judge_expect(&mut row, r, *kind, *before),
+        Check::Expect {
+            kind,
+            after,
+            before,
+        } => judge_expect(&mut row, r, *kind, *after, *before),
     }
     row
 }

@@ -382,9 +382,10 @@ fn missing_point_names_the_tier() {
     assert!(seen_hint, "no missing point on the other tier");
 }
 
-/// An expected-failure gate on nine_spring's quick rk4 point: diverge before 20 s.
+/// An expected-failure gate on nine_spring's quick rk4 point: diverge after 5 s and before
+/// 20 s.
 const EXPECT_DIVERGED: &str = "[[gates]]\nexpect = { status = \"failed\", kind = \"diverged\", \
-     before = 20.0 }\nwhere = { scene = \"two_angles\", param = \"so3\", integrator = \"rk4\", \
+     after = 5.0, before = 20.0 }\nwhere = { scene = \"two_angles\", param = \"so3\", integrator = \"rk4\", \
      formulation = \"body\", dt = 1.0e-2 }\nquick = true\n";
 
 /// The summary of `passing`, with its quick rk4 run failed as `kind` at `t` (None: left ok).
@@ -402,9 +403,10 @@ fn failed_at(c: &Case, failure: Option<(crate::integrate::FailureKind, f64)>) ->
     s
 }
 
-/// An expected-failure gate passes only on a typed failure of its kind at `t <= before`:
-/// `diverged` at t = 12 (and at exactly 20) passes; a run that ended ok, `non_finite` at
-/// t = 12 and `diverged` at t = 25 fail, each saying what happened and what was expected.
+/// An expected-failure gate passes only on a typed failure of its kind at
+/// `after < t <= before`: `diverged` at t = 12 (and at exactly 20) passes; a run that ended ok,
+/// `non_finite` at t = 12, `diverged` at t = 25, and `diverged` at the start (t = 0) or at
+/// exactly `after` (another cause) fail, each saying what happened and what was expected.
 #[test]
 fn expected_failure_passes_only_on_its_kind_in_time() {
     use crate::integrate::FailureKind::{Diverged, NonFinite};
@@ -432,7 +434,7 @@ fn expected_failure_passes_only_on_its_kind_in_time() {
         (
             "expect failed (diverged)",
             Some("diverged at t = 12"),
-            "before 20 s",
+            "after 5, before 20 s",
             None
         )
     );
@@ -444,7 +446,7 @@ fn expected_failure_passes_only_on_its_kind_in_time() {
     assert_eq!(r.outcome.as_deref(), Some("ok"));
     assert_eq!(
         r.note,
-        "ran to t_end without failing; expected diverged before 20 s"
+        "ran to t_end without failing; expected diverged after 5 and before 20 s"
     );
 
     let r = eval(Some((NonFinite, 12.0)));
@@ -452,15 +454,24 @@ fn expected_failure_passes_only_on_its_kind_in_time() {
     assert_eq!(r.outcome.as_deref(), Some("non_finite at t = 12"));
     assert_eq!(
         r.note,
-        "failed with non_finite at t = 12: the bound was crossed; expected diverged before 20 s"
+        "failed with non_finite at t = 12: the bound was crossed; expected diverged after 5 and before 20 s"
     );
 
     let r = eval(Some((Diverged, 25.0)));
     assert_eq!(r.verdict, Verdict::Fail);
     assert_eq!(
         r.note,
-        "diverged at t = 25, too late: expected diverged before 20 s"
+        "diverged at t = 25, too late: expected diverged after 5 and before 20 s"
     );
+    for early in [0.0, 1.0e-2, 5.0] {
+        let r = eval(Some((Diverged, early)));
+        assert_eq!(r.verdict, Verdict::Fail, "diverged at t = {early}");
+        assert!(
+            r.note.contains("too early (another cause)"),
+            "{early}: {}",
+            r.note
+        );
+    }
 }
 
 /// An expected-failure gate is judged beside the bound gates, one row per matched record, in
@@ -533,7 +544,7 @@ fn expected_failure_renders() {
         "two_angles/so3/rk4/body dt=1e-2",
         "expect failed (diverged)",
         "diverged at t = 12",
-        "before 20 s",
+        "after 5, before 20 s",
     ] {
         assert!(line.contains(part), "{part} not in {line}");
     }
@@ -545,8 +556,8 @@ fn expected_failure_renders() {
     for part in [
         "expect failed (diverged)",
         " ok ",
-        "before 20 s",
-        "FAIL  ran to t_end without failing; expected diverged before 20 s",
+        "after 5, before 20 s",
+        "FAIL  ran to t_end without failing; expected diverged after 5 and before 20 s",
     ] {
         assert!(line.contains(part), "{part} not in {line}");
     }
