@@ -227,10 +227,12 @@ impl Progress {
 }
 
 fn base_record(p: &dyn Problem, param: &str, integrator: &str, formulation: &str) -> Record {
-    Record::new(
+    let mut r = Record::new(
         RunKey::new(p.case(), p.scene(), param, integrator, formulation),
         p.inputs_sha256(),
-    )
+    );
+    r.settings_sha256 = Some(p.settings_sha256().to_string());
+    r
 }
 
 /// Attaches the stored references of the problems (none with a `--t-end` override, which

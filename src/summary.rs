@@ -85,6 +85,11 @@ pub struct Record {
     /// the timing pass was skipped.
     pub wall_s: Option<Wall>,
     pub inputs_sha256: String,
+    /// The hash of the case-file keys outside the physics that change a result
+    /// (`case::hash`); a record whose settings differ from the baseline's is a new record
+    /// there. Absent in summaries written before it existed.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub settings_sha256: Option<String>,
     pub reference_sha256: Option<String>,
     /// The series file (relative to the summary's folder); null when none was written, with
     /// the reason in `series_reason`.
@@ -111,6 +116,7 @@ impl Record {
             stats: Stats::default(),
             wall_s: None,
             inputs_sha256: inputs_sha256.into(),
+            settings_sha256: None,
             reference_sha256: None,
             series: None,
             series_reason: None,

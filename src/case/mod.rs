@@ -260,6 +260,9 @@ pub struct Scene {
     pub control: bool,
     /// The family's own data of the scene (a rigid body's initial state).
     pub physics: Physics,
+    /// The hash of every key of the file that can change this scene's results (`case::hash`),
+    /// set by [`load_str`] from the file's text; empty for a scene built another way.
+    pub settings_sha256: String,
 }
 
 impl Scene {
@@ -332,7 +335,24 @@ pub fn load_str(file_label: &str, text: &str) -> Result<Case, CaseError> {
             ),
         });
     };
-    (family.load)(file_label, text)
+    let mut case = (family.load)(file_label, text)?;
+    hash::check_family_inputs(family, &case)?;
+    let settings = hash::settings_sha256s(file_label, text)?;
+    for scene in &mut case.scenes {
+        let Some(h) = settings.get(scene.index) else {
+            return Err(CaseError {
+                file: file_label.to_string(),
+                key: format!("scene[{}]", scene.index),
+                message: format!(
+                    "family `{}` loaded a scene the text does not have ({} scenes)",
+                    family.model,
+                    settings.len()
+                ),
+            });
+        };
+        scene.settings_sha256 = h.clone();
+    }
+    Ok(case)
 }
 
 /// Parses `text` into a family's raw (serde) case, errors with key paths.
@@ -712,6 +732,7 @@ impl Ctx<'_> {
             quick,
             control: s.control,
             physics,
+            settings_sha256: String::new(),
         })
     }
 }

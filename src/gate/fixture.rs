@@ -104,6 +104,7 @@ pub fn record(
         },
         wall_s: None,
         inputs_sha256: inputs,
+        settings_sha256: Some(s.settings_sha256.clone()),
         reference_sha256: Some(loaded.file_sha256),
         series: None,
         series_reason: None,

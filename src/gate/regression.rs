@@ -11,7 +11,10 @@
 //!   when `new > WORK_SLACK * old` (skipped when both are 0).
 //!
 //! A run `ok` in the baseline that now ends in a typed failure is a regression row; runs in
-//! only one of the two are ignored (a new variant, a new ladder point). A scene whose physics
+//! only one of the two are ignored (a new variant, a new ladder point), and so are runs made
+//! with other settings than the baseline's (their `settings_sha256` differs: a changed
+//! tolerance or budget makes a new record, not a regression), counted in one skipped row per
+//! scene. A scene whose physics
 //! hash differs between the two gives one failing row (the baseline is for other physics: it
 //! must be updated deliberately), as does a scene whose reference cannot be loaded when
 //! errors are to be compared. A baseline without any run in common is unusable input.
@@ -125,6 +128,7 @@ pub fn compare_baseline(
     now.sort_by_key(|r| r.report_order());
     let mut claims: BTreeMap<(String, String), Result<Box<dyn Problem>, String>> = BTreeMap::new();
     let mut stale: BTreeMap<(String, String), usize> = BTreeMap::new();
+    let mut renewed: BTreeMap<(String, String), usize> = BTreeMap::new();
     let mut common = 0usize;
     let mut rows = vec![];
     for r in now {
@@ -134,6 +138,14 @@ pub fn compare_baseline(
         common += 1;
         if b.inputs_sha256 != r.inputs_sha256 {
             *stale
+                .entry((r.key.case.clone(), r.key.scene.clone()))
+                .or_default() += 1;
+            continue;
+        }
+        if let (Some(old), Some(new)) = (&b.settings_sha256, &r.settings_sha256)
+            && old != new
+        {
+            *renewed
                 .entry((r.key.case.clone(), r.key.scene.clone()))
                 .or_default() += 1;
             continue;
@@ -217,6 +229,20 @@ pub fn compare_baseline(
                  update the baseline deliberately (gate --update-baseline)"
             ),
         ));
+    }
+    for ((case, scene), n) in renewed {
+        let mut x = scene_row(
+            &case,
+            &scene,
+            "settings_sha256",
+            "same settings as the baseline",
+            format!(
+                "{n} run(s) of this scene were made with other numerical settings than the \
+                 baseline's (the case file's settings_sha256 differs): new records, not compared"
+            ),
+        );
+        x.verdict = Verdict::Skip;
+        rows.push(x);
     }
     for ((case, scene), loaded) in claims {
         if let Err(e) = loaded {
@@ -370,6 +396,33 @@ mod tests {
         let rows = compare(&c, &s, &base);
         let f = failing(&rows);
         assert_eq!((f.len(), f[0].metric.as_str()), (1, "newton_iters"));
+    }
+
+    /// A run made with other settings than the baseline's (its `settings_sha256` differs) is
+    /// a new record: its doubled work is not a regression, and one skipped row per scene says
+    /// how many runs were not compared; with equal settings the same work fails.
+    #[test]
+    fn other_settings_make_new_records() {
+        let c = nine();
+        let mut base = passing(&c);
+        for r in &mut base.records {
+            r.settings_sha256 = Some("a".repeat(64));
+        }
+        let mut s = base.clone();
+        rk4_at(&mut s, 1.0e-2).stats.rhs_evals = 8000;
+        assert_eq!(failing(&compare(&c, &s, &base)).len(), 1);
+        rk4_at(&mut s, 1.0e-2).settings_sha256 = Some("b".repeat(64));
+        let rows = compare(&c, &s, &base);
+        assert!(failing(&rows).is_empty(), "{rows:?}");
+        let skipped: Vec<&GateRow> = rows.iter().filter(|r| r.verdict == Verdict::Skip).collect();
+        assert_eq!(skipped.len(), 1, "{rows:?}");
+        assert_eq!(skipped[0].metric, "settings_sha256");
+        assert!(
+            skipped[0].note.starts_with("1 run(s) of this scene"),
+            "{}",
+            skipped[0].note
+        );
+        assert!(is_baseline_row(skipped[0]));
     }
 
     /// A 10x error growth above 100x the accuracy claim is a regression; below it (both

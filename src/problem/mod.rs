@@ -216,8 +216,19 @@ pub struct Family {
     /// Parses and validates a whole case file of this family (`case::load_str` dispatches
     /// on its `model` key): `(file label, text)`.
     pub load: fn(&str, &str) -> Result<Case, CaseError>,
-    /// The family's physics of a scene in the physics hash (`case::hash`).
+    /// The family's physics of a scene in the physics hash (`case::hash`): every key that
+    /// changes the physics, plus the numerical settings its stored reference is made with;
+    /// never one of `case::hash::RESERVED_INPUT_KEYS` (refused when a case is loaded).
     pub inputs: fn(&Case, &Scene) -> serde_json::Map<String, serde_json::Value>,
+    /// The case-file keys (dotted paths without array indices, a scene's keys under
+    /// `scene.`, a table's path covering its keys) that change a run's result but not the
+    /// stored reference: the numerical settings of the family's formulations and solvers
+    /// that the reference does not use. They are in every record's `settings_sha256` and
+    /// not in `inputs_sha256`; every other key of the family's case files (less the
+    /// presentation keys, `case::hash::PRESENTATION_KEYS`, and the shared settings,
+    /// `case::hash::SHARED_SETTINGS`) is physics and must move `inputs_sha256`.
+    /// `case/hash_tests.rs` holds every family to this for every key of its case files.
+    pub settings: &'static [&'static str],
     /// Compiles one scene of a validated case.
     pub compile: Compile,
     /// The family's figures in the report.
@@ -299,8 +310,12 @@ pub trait Problem: Send + Sync {
     fn family(&self) -> &'static Family;
     fn case(&self) -> &str;
     fn scene(&self) -> &str;
-    /// The SHA-256 of the scene's physics (cases/README.md, "Physics hash").
+    /// The SHA-256 of the scene's physics and its reference's numerical settings
+    /// (cases/README.md, "Physics hash and settings hash").
     fn inputs_sha256(&self) -> &str;
+    /// The SHA-256 of every other case-file key that can change a result (`case::hash`):
+    /// the scene's `Scene::settings_sha256`, stamped on every record.
+    fn settings_sha256(&self) -> &str;
     /// The case's primary error metric.
     fn primary_metric(&self) -> &str;
     /// The horizon (s, or the load parameter's end for a static scene).

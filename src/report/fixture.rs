@@ -100,6 +100,7 @@ fn record(
         stats: Stats::default(),
         wall_s: None,
         inputs_sha256: "0".repeat(64),
+        settings_sha256: None,
         reference_sha256: None,
         series: None,
         series_reason: None,

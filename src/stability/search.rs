@@ -656,6 +656,7 @@ pub fn record(v: &Variant, scene: &StudyScene, stable: &Found, accurate: &Found)
         stats: crate::integrate::Stats::default(),
         wall_s: None,
         inputs_sha256: scene.plan.inputs_sha256.clone(),
+        settings_sha256: Some(scene.plan.settings_sha256.clone()),
         reference_sha256: None,
         series: None,
         series_reason: None,

@@ -225,6 +225,7 @@ fn record(
         stats: Default::default(),
         wall_s: None,
         inputs_sha256: plan.inputs_sha256.clone(),
+        settings_sha256: Some(plan.settings_sha256.clone()),
         reference_sha256: None,
         series: series.as_ref().map(|s| s.0.clone()),
         series_reason: None,

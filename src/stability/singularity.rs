@@ -195,6 +195,7 @@ fn run_one(
         stats,
         wall_s: None,
         inputs_sha256: plan.inputs_sha256.clone(),
+        settings_sha256: Some(plan.settings_sha256.clone()),
         reference_sha256: None,
         series: None,
         series_reason: None,

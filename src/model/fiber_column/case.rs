@@ -285,8 +285,10 @@ fn case_physics(cx: &Ctx, own: &CaseOwn) -> Res<ColumnCase> {
             );
         }
     };
+    // The physics hash's part of the case: the column and its section as written. The
+    // numerics are the column's own solver settings (`Family::settings`): no reference uses
+    // them.
     let inputs = serde_json::json!({
-        "numerics": own.numerics,
         "column": own.column,
         "section": own.section,
     });
@@ -542,15 +544,19 @@ pub fn load(file: &str, text: &str) -> Result<Case, CaseError> {
     )
 }
 
-/// The column's physics of a scene in the physics hash: the case's own keys and the scene's,
-/// as written.
+/// The column's physics of a scene in the physics hash: the column and its section (the
+/// case's keys) and the scene's materials and load, as written. Not the numerics: they are
+/// settings (`Family::settings`), in every record's `settings_sha256`.
 pub fn inputs(case: &Case, scene: &Scene) -> serde_json::Map<String, Value> {
     let mut m = serde_json::Map::new();
     let (Some(c), Some(s)) = (case.physics::<ColumnCase>(), scene.physics::<ColumnScene>())
     else {
         return m;
     };
-    m.insert("case".into(), c.inputs.clone());
-    m.insert("scene".into(), s.inputs.clone());
+    for part in [&c.inputs, &s.inputs] {
+        if let Value::Object(o) = part {
+            m.extend(o.iter().map(|(k, v)| (k.clone(), v.clone())));
+        }
+    }
     m
 }

@@ -198,6 +198,10 @@ pub static FAMILY: Family = Family {
     compile,
     figures: &FIGURES,
     // The four schemes of the pulse and the static scenes' load control.
+    // The static scenes' reference is exact and the cyclic and dynamic ones are OpenSees'
+    // runs (bound to their model by `reference.rs`): none depends on the column's own
+    // solver settings.
+    settings: &["numerics"],
     stability_quick: &["newmark", "hht", "gen_alpha", "midpoint", "newton_load"],
 };
 

@@ -44,6 +44,7 @@ pub struct FiberProblem {
     case: String,
     scene: String,
     inputs_sha256: String,
+    settings_sha256: String,
     primary_metric: String,
     energy_scale: f64,
     setup: Setup,
@@ -80,6 +81,7 @@ impl FiberProblem {
             case: case.name.clone(),
             scene: scene.name.clone(),
             inputs_sha256: crate::case::inputs_sha256(case, scene),
+            settings_sha256: scene.settings_sha256.clone(),
             primary_metric: case.primary_metric.clone(),
             energy_scale: case.energy_scale,
             setup: Setup {
@@ -203,6 +205,9 @@ impl Problem for FiberProblem {
     }
     fn inputs_sha256(&self) -> &str {
         &self.inputs_sha256
+    }
+    fn settings_sha256(&self) -> &str {
+        &self.settings_sha256
     }
     fn primary_metric(&self) -> &str {
         &self.primary_metric

@@ -166,6 +166,16 @@ pub static FAMILY: Family = Family {
     figures: &FIGURES,
     // The explicit method whose limit the search measures and the implicit ones of the
     // structural and ODE forms.
+    // The reference (fe_exact with `reference_elements` at `reference_dt`) and its
+    // self-convergence tracks do not use the constraint stabilisation of the AIGC forms
+    // (their track is aigc_projection's), the divergence bound or the scenes' energy scale.
+    settings: &[
+        "numerics.baumgarte",
+        "numerics.baumgarte_soft",
+        "numerics.baumgarte_stiff",
+        "numerics.divergence_bound",
+        "scene.energy_scale",
+    ],
     stability_quick: &["rk4", "newmark", "implicit_midpoint", "gen_alpha_i3"],
 };
 

@@ -50,6 +50,7 @@ pub struct BeamProblem {
     case: String,
     scene: String,
     inputs_sha256: String,
+    settings_sha256: String,
     primary_metric: String,
     pub(super) setup: Setup,
     ladders: Ladders,
@@ -71,6 +72,7 @@ impl BeamProblem {
             case: case.name.clone(),
             scene: scene.name.clone(),
             inputs_sha256: crate::case::inputs_sha256(case, scene),
+            settings_sha256: scene.settings_sha256.clone(),
             primary_metric: case.primary_metric.clone(),
             setup: Setup {
                 scene: s.clone(),
@@ -320,6 +322,9 @@ impl Problem for BeamProblem {
     }
     fn inputs_sha256(&self) -> &str {
         &self.inputs_sha256
+    }
+    fn settings_sha256(&self) -> &str {
+        &self.settings_sha256
     }
     fn primary_metric(&self) -> &str {
         &self.primary_metric

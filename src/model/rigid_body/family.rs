@@ -23,6 +23,9 @@ pub static FAMILY: Family = Family {
     inputs: super::case::inputs,
     compile,
     figures: &super::figures::FIGURES,
+    // Every rigid-body key is physics: the references are integrated or exact from the
+    // body, springs and initial state alone.
+    settings: &[],
     stability_quick: &[],
 };
 

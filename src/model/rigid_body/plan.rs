@@ -20,6 +20,8 @@ pub struct ScenePlan {
     pub energy_scale: f64,
     pub primary_metric: String,
     pub inputs_sha256: String,
+    /// The scene's `settings_sha256` (`case::hash`).
+    pub settings_sha256: String,
     pub ladders: Ladders,
     pub quick: Ladders,
 }
@@ -52,6 +54,7 @@ pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
         energy_scale: c.energy_scale,
         primary_metric: c.primary_metric.clone(),
         inputs_sha256: case::inputs_sha256(c, s),
+        settings_sha256: s.settings_sha256.clone(),
         ladders: ladders(s.ladder(false)),
         quick: ladders(s.ladder(true)),
     })

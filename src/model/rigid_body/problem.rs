@@ -82,6 +82,9 @@ impl Problem for RigidProblem {
     fn inputs_sha256(&self) -> &str {
         &self.plan.inputs_sha256
     }
+    fn settings_sha256(&self) -> &str {
+        &self.plan.settings_sha256
+    }
     fn primary_metric(&self) -> &str {
         &self.plan.primary_metric
     }

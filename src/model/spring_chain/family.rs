@@ -94,6 +94,7 @@ pub static FAMILY: Family = Family {
     inputs: super::case::inputs,
     compile,
     figures: &FIGURES,
+    settings: &[],
     stability_quick: &["rk4"],
 };
 
