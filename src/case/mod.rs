@@ -341,6 +341,7 @@ pub fn parse<T: serde::de::DeserializeOwned>(file_label: &str, text: &str) -> Re
 }
 
 /// Loads every `*.toml` of `dir`, sorted by file name; each file's `case` must equal its stem.
+/// Each is read as a regular file of at most `read_limited::CASE` bytes.
 pub fn load_dir(dir: &Path) -> Result<Vec<Case>, CaseError> {
     let dir_label = dir.display().to_string();
     let io = |e: std::io::Error| CaseError {
@@ -366,10 +367,16 @@ pub fn load_dir(dir: &Path) -> Result<Vec<Case>, CaseError> {
     let mut cases = Vec::with_capacity(paths.len());
     for path in paths {
         let label = path.display().to_string();
-        let text = std::fs::read_to_string(&path).map_err(|e| CaseError {
+        let bytes =
+            crate::read_limited::read(&path, crate::read_limited::CASE).map_err(|e| CaseError {
+                file: label.clone(),
+                key: String::new(),
+                message: e.why.to_string(),
+            })?;
+        let text = String::from_utf8(bytes).map_err(|e| CaseError {
             file: label.clone(),
             key: String::new(),
-            message: format!("cannot read: {e}"),
+            message: format!("cannot read: not UTF-8 text: {e}"),
         })?;
         let case = load_str(&label, &text)?;
         check_stem(&case, &path)?;
