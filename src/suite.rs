@@ -214,7 +214,7 @@ impl Progress {
             None if self.enabled
                 && (n.is_multiple_of((self.total / 20).max(1)) || n == self.total) =>
             {
-                eprintln!("  {} {n}/{} runs", self.label, self.total);
+                crate::tell!("  {} {n}/{} runs", self.label, self.total);
             }
             None => {}
         }
