@@ -1,4 +1,5 @@
-//! Standard output and standard error that go quiet when their reader has gone.
+//! Standard output and standard error that go quiet when their reader has gone, and never
+//! print a terminal control sequence they were handed.
 //!
 //! Once a write fails with `BrokenPipe` (EPIPE: `mbdbench list | head -1`, or
 //! `mbdbench run ... 2>&1 | head -1` for stderr), every later write to that stream is dropped,
@@ -8,6 +9,13 @@
 //! [`Stderr`] ([`tell!`]); other write errors are returned to the caller of the writers (and
 //! dropped by the macros).
 //!
+//! Text from input files (a case's `title`, names in a hand-edited summary, a key quoted in
+//! an error) reaches both streams, so every control character except newline and tab (ESC,
+//! carriage return, the other C0 controls, DEL and the C1 controls U+0080 to U+009F) is written
+//! as the visible text `\u001b` instead ([`terminal_safe`]): a case file cannot move the
+//! cursor, recolour or retitle the terminal. Inside JSON output (`list --json`) that is the
+//! JSON escape of the same character, so the value read back is unchanged.
+//!
 //! # Example
 //!
 //! ```
@@ -16,7 +24,9 @@
 //! writeln!(mbdbench::quiet::Stdout, "ok").unwrap();
 //! mbdbench::say!("{} runs", 3);
 //! mbdbench::tell!("note: {}", "on stderr");
+//! assert_eq!(mbdbench::quiet::terminal_safe("a\u{1b}[2Jb\n"), "a\\u001b[2Jb\n");
 //! ```
+use std::borrow::Cow;
 use std::io::{self, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -30,6 +40,46 @@ pub fn closed() -> bool {
     STDOUT_CLOSED.load(Ordering::Relaxed)
 }
 
+/// Whether a character is written escaped: a control character other than newline and tab.
+fn hidden(c: char) -> bool {
+    c.is_control() && c != '\n' && c != '\t'
+}
+
+/// `s` with every control character but newline and tab written as `\uXXXX` (module docs).
+pub fn terminal_safe(s: &str) -> Cow<'_, str> {
+    if !s.chars().any(hidden) {
+        return Cow::Borrowed(s);
+    }
+    let mut out = String::with_capacity(s.len() + 8);
+    for c in s.chars() {
+        if hidden(c) {
+            out.push_str(&format!("\\u{:04x}", c as u32));
+        } else {
+            out.push(c);
+        }
+    }
+    Cow::Owned(out)
+}
+
+/// `buf` made terminal-safe: its UTF-8 text through [`terminal_safe`], any byte that is not
+/// UTF-8 as `\xNN`.
+fn safe_bytes(buf: &[u8]) -> Cow<'_, [u8]> {
+    if let Ok(s) = std::str::from_utf8(buf) {
+        return match terminal_safe(s) {
+            Cow::Borrowed(_) => Cow::Borrowed(buf),
+            Cow::Owned(o) => Cow::Owned(o.into_bytes()),
+        };
+    }
+    let mut out = String::with_capacity(buf.len() + 8);
+    for chunk in buf.utf8_chunks() {
+        out.push_str(&terminal_safe(chunk.valid()));
+        for b in chunk.invalid() {
+            out.push_str(&format!("\\x{b:02x}"));
+        }
+    }
+    Cow::Owned(out.into_bytes())
+}
+
 /// `r`, with a broken pipe recorded in `closed` and turned into success (`or`).
 fn quiet<T>(closed: &AtomicBool, r: io::Result<T>, or: T) -> io::Result<T> {
     match r {
@@ -41,12 +91,12 @@ fn quiet<T>(closed: &AtomicBool, r: io::Result<T>, or: T) -> io::Result<T> {
     }
 }
 
-/// Writes `buf` to `w` unless the stream is closed.
+/// Writes `buf`, terminal-safe, to `w` unless the stream is closed.
 fn put(closed: &AtomicBool, mut w: impl Write, buf: &[u8]) -> io::Result<()> {
     if closed.load(Ordering::Relaxed) {
         return Ok(());
     }
-    quiet(closed, w.write_all(buf), ())
+    quiet(closed, w.write_all(&safe_bytes(buf)), ())
 }
 
 fn flush(closed: &AtomicBool, mut w: impl Write) -> io::Result<()> {
@@ -56,7 +106,7 @@ fn flush(closed: &AtomicBool, mut w: impl Write) -> io::Result<()> {
     quiet(closed, w.flush(), ())
 }
 
-/// The process's standard output, quiet after a broken pipe.
+/// The process's standard output, quiet after a broken pipe, terminal-safe.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Stdout;
 
@@ -72,7 +122,7 @@ impl Write for Stdout {
     }
 }
 
-/// The process's standard error, quiet after a broken pipe.
+/// The process's standard error, quiet after a broken pipe, terminal-safe.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Stderr;
 
@@ -122,5 +172,30 @@ mod tests {
         assert!(Stderr.flush().is_ok());
         STDOUT_CLOSED.store(false, Ordering::Relaxed);
         STDERR_CLOSED.store(false, Ordering::Relaxed);
+    }
+
+    /// ESC, carriage return, BEL, DEL and the C1 controls (CSI, U+009B) are written as visible
+    /// `\uXXXX` text; newline, tab and other text pass unchanged.
+    #[test]
+    fn control_characters_are_made_visible() {
+        assert_eq!(terminal_safe("plain — text\n\tok"), "plain — text\n\tok");
+        assert!(matches!(terminal_safe("plain"), Cow::Borrowed(_)));
+        assert_eq!(
+            terminal_safe("\u{1b}]0;pwned\u{7}\r\u{7f}\u{9b}31m"),
+            "\\u001b]0;pwned\\u0007\\u000d\\u007f\\u009b31m"
+        );
+        let safe = safe_bytes(b"a\x1b[2J\xff\n");
+        assert_eq!(&*safe, b"a\\u001b[2J\\xff\n");
+    }
+
+    /// Escaped control characters inside JSON strings are the JSON escapes of the same
+    /// characters: the text read back is the original.
+    #[test]
+    fn json_values_survive() {
+        let v = serde_json::json!({ "title": "a\u{9b}b\u{7f}\u{1b}" });
+        let text = serde_json::to_string(&v).unwrap();
+        let back: serde_json::Value = serde_json::from_str(&terminal_safe(&text)).unwrap();
+        assert_eq!(back, v);
+        assert!(!terminal_safe(&text).chars().any(hidden));
     }
 }
