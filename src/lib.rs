@@ -34,6 +34,7 @@ pub mod output;
 pub mod plan;
 pub mod problem;
 pub mod quiet;
+pub mod read_limited;
 pub mod reference;
 pub mod report;
 pub mod rotation;

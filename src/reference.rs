@@ -98,9 +98,10 @@ pub fn columns_fit(n: usize, lens: &[usize]) -> Result<(), String> {
     Ok(())
 }
 
-/// Loads and validates a family's reference file `references/<case>/<scene>.json`: readable,
-/// its columns consistent, its case and scene the expected ones, not stale; returns it with
-/// the SHA-256 of the file.
+/// Loads and validates a family's reference file `references/<case>/<scene>.json`: a regular
+/// file inside `root` of at most `read_limited::REFERENCE` bytes (`crate::read_limited`), its
+/// columns consistent, its case and scene the expected ones, not stale; returns it with the
+/// SHA-256 of the file.
 pub fn load_as<R: Stored>(
     root: &Path,
     case: &str,
@@ -109,9 +110,9 @@ pub fn load_as<R: Stored>(
 ) -> Result<(R, String), ReferenceError> {
     let p = path(root, case, scene);
     let shown = p.display().to_string();
-    let bytes = match std::fs::read(&p) {
+    let bytes = match crate::read_limited::read_within(root, &p, crate::read_limited::REFERENCE) {
         Ok(b) => b,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+        Err(e) if e.is_missing() => {
             return Err(ReferenceError::Missing {
                 path: shown,
                 case: case.into(),
@@ -121,7 +122,7 @@ pub fn load_as<R: Stored>(
         Err(e) => {
             return Err(ReferenceError::Unreadable {
                 path: shown,
-                message: e.to_string(),
+                message: e.why.to_string(),
             });
         }
     };

@@ -214,7 +214,7 @@ impl Progress {
             None if self.enabled
                 && (n.is_multiple_of((self.total / 20).max(1)) || n == self.total) =>
             {
-                eprintln!("  {} {n}/{} runs", self.label, self.total);
+                crate::tell!("  {} {n}/{} runs", self.label, self.total);
             }
             None => {}
         }
@@ -362,9 +362,9 @@ pub fn run_catalogue(
         let kept = |k: &RunKey| !selection.admits(k);
         for r in base.records.iter().filter(|r| kept(&r.key)) {
             if let Some(rel) = &r.series {
-                let bytes = std::fs::read(opts.out.join(rel)).map_err(|e| {
-                    format!("{}: cannot keep it: {e}", opts.out.join(rel).display())
-                })?;
+                let bytes =
+                    crate::read_limited::read(&opts.out.join(rel), crate::read_limited::SERIES)
+                        .map_err(|e| format!("{e}; cannot keep it"))?;
                 staging.write(rel, &bytes)?;
             }
             records.push(r.clone());

@@ -259,9 +259,10 @@ impl Summary {
     }
 
     /// What the schema cannot check, for a summary read from a file: every run appears once
-    /// (its run key and ladder point), a `failed` record carries its failure and an `ok` or
-    /// `n/a` one none, and no error or drift metric (a name containing `error` or `drift`) is
-    /// negative. The message names the record by its index and key.
+    /// (its run key and ladder point), its names hold no control character, a `failed` record
+    /// carries its failure and an `ok` or `n/a` one none, and no error or drift metric (a name
+    /// containing `error` or `drift`) is negative. The message names the record by its index
+    /// and key.
     pub fn check(&self) -> Result<(), String> {
         if let Some(sel) = &self.selection {
             sel.check()?;
@@ -269,6 +270,21 @@ impl Summary {
         let mut seen: BTreeMap<(&RunKey, u64, u64), usize> = BTreeMap::new();
         for (i, r) in self.records.iter().enumerate() {
             let k = &r.key;
+            // Names reach the terminal, summary.md and the page: a control character (a
+            // newline, ESC) could forge a line or a heading, or drive the terminal.
+            for (key, n) in [
+                ("case", &k.case),
+                ("scene", &k.scene),
+                ("param", &k.param),
+                ("integrator", &k.integrator),
+                ("formulation", &k.formulation),
+            ] {
+                if n.chars().any(char::is_control) {
+                    return Err(format!(
+                        "records[{i}]: key `{key}` is {n:?}: a control character in a name"
+                    ));
+                }
+            }
             let name = || {
                 format!(
                     "records[{i}] ({}/{} {}/{}/{}{})",

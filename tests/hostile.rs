@@ -317,28 +317,7 @@ fn jobs_are_clamped() {
 
 /// A copy of the stored references with `nine_spring/two_angles.json` edited.
 fn references_with(tag: &str, edit: &dyn Fn(&mut serde_json::Value)) -> std::path::PathBuf {
-    let src = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("references");
-    let dir = common::temp_dir(tag);
-    // Recursively: a family may keep its references in subfolders (the fiber column's
-    // OpenSees runs and material responses).
-    fn copy_tree(from: &std::path::Path, to: &std::path::Path) {
-        std::fs::create_dir_all(to).unwrap();
-        for f in std::fs::read_dir(from).unwrap() {
-            let f = f.unwrap().path();
-            let target = to.join(f.file_name().unwrap());
-            if f.is_dir() {
-                copy_tree(&f, &target);
-            } else {
-                std::fs::copy(&f, target).unwrap();
-            }
-        }
-    }
-    for case in std::fs::read_dir(&src).unwrap() {
-        let case = case.unwrap().path();
-        if case.is_dir() {
-            copy_tree(&case, &dir.join(case.file_name().unwrap()));
-        }
-    }
+    let dir = common::copy_references(tag);
     let p = dir.join("nine_spring/two_angles.json");
     let mut r: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();

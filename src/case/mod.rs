@@ -361,6 +361,7 @@ pub fn parse<T: serde::de::DeserializeOwned>(file_label: &str, text: &str) -> Re
 }
 
 /// Loads every `*.toml` of `dir`, sorted by file name; each file's `case` must equal its stem.
+/// Each is read as a regular file of at most `read_limited::CASE` bytes.
 pub fn load_dir(dir: &Path) -> Result<Vec<Case>, CaseError> {
     let dir_label = dir.display().to_string();
     let io = |e: std::io::Error| CaseError {
@@ -386,10 +387,16 @@ pub fn load_dir(dir: &Path) -> Result<Vec<Case>, CaseError> {
     let mut cases = Vec::with_capacity(paths.len());
     for path in paths {
         let label = path.display().to_string();
-        let text = std::fs::read_to_string(&path).map_err(|e| CaseError {
+        let bytes =
+            crate::read_limited::read(&path, crate::read_limited::CASE).map_err(|e| CaseError {
+                file: label.clone(),
+                key: String::new(),
+                message: e.why.to_string(),
+            })?;
+        let text = String::from_utf8(bytes).map_err(|e| CaseError {
             file: label.clone(),
             key: String::new(),
-            message: format!("cannot read: {e}"),
+            message: format!("cannot read: not UTF-8 text: {e}"),
         })?;
         let case = load_str(&label, &text)?;
         check_stem(&case, &path)?;
@@ -510,6 +517,54 @@ impl Ctx<'_> {
         }
     }
 
+    /// The file's `schema`, its `case` name (snake_case) and its `title`: one line without
+    /// control characters, since the title reaches the terminal (`list`) and summary.md, where
+    /// a newline could forge a heading and an ESC a terminal control sequence.
+    fn identity(&self, raw: &RawShared) -> Res<()> {
+        if raw.schema != SCHEMA {
+            return self.err("schema", format!("{}; expected {SCHEMA}", raw.schema));
+        }
+        self.name(
+            "case",
+            &raw.case,
+            |c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_',
+            "a snake_case name ([a-z0-9_]+)",
+        )?;
+        if raw.title.chars().any(char::is_control) {
+            return self.err(
+                "title",
+                format!(
+                    "{:?} holds a control character (a newline, tab, ESC, ...); expected one \
+                     line of plain text",
+                    raw.title
+                ),
+            );
+        }
+        Ok(())
+    }
+
+    /// `advise_targets`: absent, or a non-empty list of distinct positive errors.
+    fn advise_targets(&self, targets: Option<&[f64]>) -> Res<Option<Vec<f64>>> {
+        let Some(t) = targets else {
+            return Ok(None);
+        };
+        if t.is_empty() {
+            return self.err(
+                "advise_targets",
+                "empty; expected at least one target error",
+            );
+        }
+        let mut seen = std::collections::HashSet::new();
+        for (i, &x) in t.iter().enumerate() {
+            let k = format!("advise_targets[{i}]");
+            self.positive(&k, x, "an error in the primary metric's unit")?;
+            if !seen.insert(x.to_bits()) {
+                return self.err(k, format!("{x} is listed twice"));
+            }
+        }
+        Ok(Some(t.to_vec()))
+    }
+
     /// The shared part of a case: checks the shared keys, lets the family check its own
     /// (`case_physics` once, before the scenes; `scene_physics` per scene, after its name),
     /// resolves every scene's grid and ladders, then the gates and `[stability]`.
@@ -521,15 +576,7 @@ impl Ctx<'_> {
         scenes: Vec<(RawGrid, O)>,
         scene_physics: impl Fn(&Self, usize, &O, &C) -> Res<S>,
     ) -> Res<Case> {
-        if raw.schema != SCHEMA {
-            return self.err("schema", format!("{}; expected {SCHEMA}", raw.schema));
-        }
-        self.name(
-            "case",
-            &raw.case,
-            |c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_',
-            "a snake_case name ([a-z0-9_]+)",
-        )?;
+        self.identity(&raw)?;
         if !family.has_metric(&raw.primary_metric) {
             return self.err(
                 "primary_metric",
@@ -558,26 +605,7 @@ impl Ctx<'_> {
             Some(x) => self.count("max_adaptive_rhs_evals", x)?,
             None => DEFAULT_MAX_ADAPTIVE_RHS_EVALS,
         };
-        let advise_targets = match &raw.advise_targets {
-            None => None,
-            Some(t) if t.is_empty() => {
-                return self.err(
-                    "advise_targets",
-                    "empty; expected at least one target error",
-                );
-            }
-            Some(t) => {
-                let mut seen = std::collections::HashSet::new();
-                for (i, &x) in t.iter().enumerate() {
-                    let k = format!("advise_targets[{i}]");
-                    self.positive(&k, x, "an error in the primary metric's unit")?;
-                    if !seen.insert(x.to_bits()) {
-                        return self.err(k, format!("{x} is listed twice"));
-                    }
-                }
-                Some(t.clone())
-            }
-        };
+        let advise_targets = self.advise_targets(raw.advise_targets.as_deref())?;
         let advise_max_energy_drift = match raw.advise_max_energy_drift {
             Some(x) => self.positive("advise_max_energy_drift", x, "a relative drift")?,
             None => DEFAULT_ADVISE_MAX_ENERGY_DRIFT,

@@ -745,3 +745,18 @@ fn adaptive_budget_key() {
         error_at(&with(bad), "max_adaptive_rhs_evals");
     }
 }
+
+/// A `title` holding a control character (a newline that would forge a heading in
+/// summary.md, ESC, a tab) is refused naming the key, the title shown escaped; a plain one
+/// with non-ASCII text loads.
+#[test]
+fn title_without_control_characters() {
+    let old = "title = \"Rigid body on nine linear springs";
+    for bad in ["x\\n## 0 failed", "\\u001b[31mred", "a\\tb", "\\u009b2J"] {
+        let e = error_at(&edited(old, &format!("title = \"{bad}")), "title");
+        assert!(e.message.contains("control character"), "{e}");
+        assert!(!e.to_string().chars().any(|c| c.is_control()), "{e:?}");
+    }
+    let ok = load_str(LABEL, &edited(old, "title = \"Brüls — ok")).unwrap();
+    assert!(ok.title.starts_with("Brüls — ok"));
+}

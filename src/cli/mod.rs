@@ -307,7 +307,9 @@ fn jobs_or_default(j: Option<usize>) -> usize {
     match j {
         None | Some(0) => cores,
         Some(n) if n > cores => {
-            eprintln!("note: --jobs {n} is more than the {cores} available cores; using {cores}");
+            crate::tell!(
+                "note: --jobs {n} is more than the {cores} available cores; using {cores}"
+            );
             cores
         }
         Some(n) => n,
@@ -335,7 +337,7 @@ pub fn execute(cli: Cli) -> i32 {
     match result {
         Ok(code) => code,
         Err(msg) => {
-            eprintln!("error: {msg}");
+            crate::tell!("error: {msg}");
             EXIT_BAD_INPUT
         }
     }
@@ -360,7 +362,7 @@ fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
         progress: true,
     };
     let t0 = std::time::Instant::now();
-    eprintln!(
+    crate::tell!(
         "mbdbench stability: {} jobs{}",
         opts.jobs,
         if a.quick { ", quick tier" } else { "" }
@@ -407,12 +409,12 @@ fn cmd_report(
     // stability.json beside the summary: its part of the report; unusable = a warning.
     let (stability, warning) = crate::report::stability::load_beside(summary_path);
     if let Some(w) = warning {
-        eprintln!("{w}");
+        crate::tell!("{w}");
     }
     let rows = match crate::gate::evaluate(&cases, &summary, stability.as_ref(), &opts) {
         Ok(rows) => Some(rows),
         Err(e) => {
-            eprintln!("warning: gates not evaluated for the report: {e}");
+            crate::tell!("warning: gates not evaluated for the report: {e}");
             None
         }
     };

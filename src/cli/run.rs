@@ -149,13 +149,13 @@ pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf
         }
     };
     if let Some(how) = &how {
-        eprintln!("note: {how}");
+        crate::tell!("note: {how}");
     }
     opts.out = out.clone();
     crate::reference::check_writable(&out)?;
     let had_report = out.join("index.html").is_file();
     let t0 = std::time::Instant::now();
-    eprintln!(
+    crate::tell!(
         "mbdbench run: {} scenes, {} jobs{}",
         problems.len(),
         opts.jobs,

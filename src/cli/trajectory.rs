@@ -119,7 +119,7 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
     reference::write_atomic(&a.out, text.as_bytes())
         .map_err(|e| format!("{}: {e}", a.out.display()))?;
     if let Some(f) = out.failure {
-        eprintln!(
+        crate::tell!(
             "run failed: {} at t = {}: {}",
             f.kind.name(),
             f.t,

@@ -3,10 +3,13 @@
 //! truncated (the parser reaches its end inside a value), not in the schema or of another `schema`
 //! version, or one that fails `Summary::check` (a run twice, a failed run without its failure, a
 //! negative error) is unusable input: a `GateError` naming the file and what is wrong with it,
-//! never a failing gate row.
+//! never a failing gate row. Each is read as a regular file of at most
+//! `read_limited::SUMMARY` bytes (`crate::read_limited`): a FIFO or a link to `/dev/zero` given
+//! as `--summary` or `--baseline` is refused at once, naming it.
 use std::path::Path;
 
 use super::GateError;
+use crate::read_limited;
 use crate::summary::Summary;
 
 /// Reads `summary.json`; a missing, corrupt or truncated file is an error naming it.
@@ -14,24 +17,34 @@ pub fn load_summary(path: &Path) -> Result<Summary, GateError> {
     load_as(path, "summary")
 }
 
-/// `stability.json` beside `summary_path`, if that file exists (an unusable one is an error).
+/// `stability.json` beside `summary_path`, if that name exists (an unusable one, or one that is
+/// not a regular file, is an error).
 pub fn stability_beside(summary_path: &Path) -> Result<Option<Summary>, GateError> {
     let p = summary_path.with_file_name("stability.json");
-    if !p.is_file() {
-        return Ok(None);
+    match read_limited::read(&p, read_limited::SUMMARY) {
+        Err(e) if e.is_missing() => Ok(None),
+        read => parse(&p, read, "stability summary").map(Some),
     }
-    load_as(&p, "stability summary").map(Some)
 }
 
 /// Reads a file in the summary's schema, checked against its folder's manifest when it has
 /// one; `what` names it in errors.
 pub(crate) fn load_as(path: &Path, what: &'static str) -> Result<Summary, GateError> {
+    parse(path, read_limited::read(path, read_limited::SUMMARY), what)
+}
+
+/// `load_as` on the outcome of reading `path`.
+fn parse(
+    path: &Path,
+    read: Result<Vec<u8>, read_limited::ReadError>,
+    what: &'static str,
+) -> Result<Summary, GateError> {
     let bad = |message: String| GateError::Unreadable {
         what,
         path: path.display().to_string(),
         message,
     };
-    let bytes = std::fs::read(path).map_err(|e| bad(format!("cannot read: {e}")))?;
+    let bytes = read.map_err(|e| bad(e.why.to_string()))?;
     // The folder's manifest (`output`): a file changed since the suite wrote the folder may
     // sit beside another run's files.
     crate::output::verify(path, &bytes).map_err(bad)?;

@@ -1,7 +1,7 @@
 //! The gate's terminal table and exit code: one line per gate row (case, variant, metric,
 //! value, threshold, verdict and, for a failure, why), of the baseline rows only the failing
 //! ones and a count line, the skipped rows counted by reason, then `N passed, N failed,
-//! N skipped` as the last line. Exit 0 when no row fails (skipped rows do not), 1 when any
+//! N skipped` as the last line (every cell on one line: `one_line`). Exit 0 when no row fails (skipped rows do not), 1 when any
 //! fails (bad input, exit 2, never gets this far).
 use std::io::Write;
 
@@ -29,6 +29,16 @@ fn value(r: &GateRow) -> String {
             format!("{x:.0}")
         }
         Some(x) => format!("{x:.3e}"),
+    }
+}
+
+/// A cell on one line: a control character (a newline or tab in a failure message read from
+/// a summary file) becomes a space, so that no text forges a row or the verdict line.
+fn one_line(s: String) -> String {
+    if s.chars().any(char::is_control) {
+        s.replace(char::is_control, " ")
+    } else {
+        s
     }
 }
 
@@ -72,6 +82,7 @@ fn print_rows(rows: &[GateRow], out: &mut impl Write) -> std::io::Result<()> {
                 r.threshold.clone(),
                 verdict,
             ]
+            .map(one_line)
         })
         .collect();
     let header = ["case", "variant", "metric", "value", "threshold", "verdict"];
@@ -126,7 +137,7 @@ fn print_tail(rows: &[GateRow], out: &mut impl Write) -> std::io::Result<()> {
     }
     // Skipped rows by reason, one line each (a filtered run skips hundreds).
     for (note, k) in &skipped_by_reason(rows) {
-        writeln!(out, "skipped {k}: {note}")?;
+        writeln!(out, "skipped {k}: {}", one_line(note.clone()))?;
     }
     writeln!(out, "{}", verdict_line(rows))
 }
@@ -160,5 +171,16 @@ pub fn exit_code(rows: &[GateRow]) -> i32 {
         1
     } else {
         0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// A cell holding a newline, a carriage return or ESC is printed on one line; a plain
+    /// cell is unchanged.
+    #[test]
+    fn cells_stay_on_one_line() {
+        assert_eq!(super::one_line("a\nb\r\u{1b}c".into()), "a b  c");
+        assert_eq!(super::one_line("plain".into()), "plain");
     }
 }

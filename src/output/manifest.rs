@@ -79,13 +79,13 @@ impl Manifest {
     }
 
     /// The manifest of folder `dir`: None when it has none; an error naming the file when it
-    /// cannot be read or parsed.
+    /// cannot be read (not a regular file, over `read_limited::MANIFEST` bytes) or parsed.
     pub fn load(dir: &Path) -> Result<Option<Manifest>, String> {
         let path = dir.join(MANIFEST);
-        let bytes = match std::fs::read(&path) {
+        let bytes = match crate::read_limited::read(&path, crate::read_limited::MANIFEST) {
             Ok(b) => b,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-            Err(e) => return Err(format!("{}: cannot read: {e}", path.display())),
+            Err(e) if e.is_missing() => return Ok(None),
+            Err(e) => return Err(e.to_string()),
         };
         let m: Manifest = serde_json::from_slice(&bytes)
             .map_err(|e| format!("{}: not a manifest: {e}", path.display()))?;

@@ -144,7 +144,7 @@ impl Staging {
         };
         if old {
             let previous = Manifest::load(&self.out).unwrap_or_else(|e| {
-                eprintln!("warning: {e}: every file of the folder is kept as the user's");
+                crate::tell!("warning: {e}: every file of the folder is kept as the user's");
                 None
             });
             let previous = previous.unwrap_or_default();

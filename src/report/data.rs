@@ -370,7 +370,7 @@ fn inside(rel: &Path) -> bool {
 
 /// The largest series file the report reads (bytes): a series holds a few numbers per score
 /// time; anything larger is not one, and reading it would bound nothing.
-pub const MAX_SERIES_BYTES: u64 = 1 << 30;
+pub const MAX_SERIES_BYTES: u64 = crate::read_limited::SERIES.cap;
 
 /// Where a run's series file may be: `root/<case>/<scene>/<id>.json` (root = the summary's
 /// `series/` directory), else the record's own relative path under `root` or under `root`'s
@@ -403,13 +403,20 @@ pub fn series_candidates(root: &Path, r: &Record) -> Vec<PathBuf> {
 /// A run's series, if its file is a regular file of at most `MAX_SERIES_BYTES` and parses.
 pub fn load_series(root: &Path, r: &Record) -> Option<Series> {
     series_candidates(root, r).into_iter().find_map(|p| {
-        let m = std::fs::metadata(&p).ok()?;
-        if !m.is_file() || m.len() > MAX_SERIES_BYTES {
-            return None;
-        }
-        let text = std::fs::read_to_string(p).ok()?;
-        serde_json::from_str(&text).ok()
+        let bytes = crate::read_limited::read(&p, crate::read_limited::SERIES).ok()?;
+        serde_json::from_slice(&bytes).ok()
     })
+}
+
+/// A stability record's series file `rel` under the folder `dir` of `stability.json`, as
+/// JSON: None when `rel` would leave the folder (absolute, `..`), or the file is not a
+/// regular file of at most `MAX_SERIES_BYTES`, or does not parse.
+pub fn load_json_inside(dir: &Path, rel: &Path) -> Option<serde_json::Value> {
+    if !inside(rel) {
+        return None;
+    }
+    let bytes = crate::read_limited::read(&dir.join(rel), crate::read_limited::SERIES).ok()?;
+    serde_json::from_slice(&bytes).ok()
 }
 
 #[cfg(test)]

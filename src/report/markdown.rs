@@ -10,8 +10,10 @@ use super::{CaseSection, Page};
 
 /// Makes text inert for a Markdown renderer, as `index.html` escapes it: a `<` that would open
 /// a tag, a comment, a declaration or an autolink (followed by a letter, `/`, `!` or `?`) and an
-/// `&` that would start an entity (followed by a letter or `#`) are written as entities; the
-/// rest (`<=`, `a & b`) stays as it reads.
+/// `&` that would start an entity (followed by a letter or `#`) are written as entities; every
+/// control character (a newline, a carriage return, ESC) becomes a space, so that text from a
+/// case or summary file stays on its line and cannot start one (a name holding
+/// `"\n## 0 failed"` would otherwise be a heading); the rest (`<=`, `a & b`) stays as it reads.
 pub(super) fn text(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     let mut it = s.chars().peekable();
@@ -24,15 +26,16 @@ pub(super) fn text(s: &str) -> String {
             '&' if next.is_some_and(|n| n.is_ascii_alphabetic() || n == '#') => {
                 out.push_str("&amp;")
             }
+            c if c.is_control() => out.push(' '),
             c => out.push(c),
         }
     }
     out
 }
 
-/// Escapes a table cell: inert text (`text`), pipes, and newlines folded to spaces.
+/// Escapes a table cell: inert text (`text`, newlines folded to spaces) and pipes.
 fn cell(s: &str) -> String {
-    text(s).replace('|', "\\|").replace(['\n', '\r'], " ")
+    text(s).replace('|', "\\|")
 }
 
 /// Renders a table (folded when longer than `open_below` rows).
@@ -105,7 +108,12 @@ fn failing_gates(c: &CaseSection) -> Option<Table> {
 /// The whole document: the environment, the gate verdict (and the failing rows), the
 /// recommendation, and one line per case pointing to its section of `index.html`.
 pub fn render(page: &Page) -> String {
-    let mut s = format!("# mbdbench report\n\n`{}`\n\n", page.env_line);
+    // The environment comes from the summary (a hand-edited one too): kept on its line and
+    // inside its code span.
+    let env = page
+        .env_line
+        .replace(|c: char| c.is_control() || c == '`', " ");
+    let mut s = format!("# mbdbench report\n\n`{env}`\n\n");
     if let Some(g) = &page.gate_summary {
         s.push_str(&format!("**Gates: {}.**", text(&g.line)));
         for (why, k) in &g.skipped {
@@ -147,7 +155,8 @@ mod tests {
     use crate::report::tables::Cell;
 
     /// Text is inert for a Markdown renderer: tags, comments, declarations and entities are
-    /// escaped, comparisons and lone ampersands read as written.
+    /// escaped, control characters (a newline that would start a heading) become spaces,
+    /// comparisons and lone ampersands read as written.
     #[test]
     fn text_is_inert() {
         assert_eq!(text("<img src=x>"), "&lt;img src=x>");
@@ -158,6 +167,7 @@ mod tests {
             "error <= 1e-6 & drift < 2"
         );
         assert_eq!(cell("a|<i>"), "a\\|&lt;i>");
+        assert_eq!(text("t\n## 0 failed\r\u{1b}[2J"), "t ## 0 failed  [2J");
     }
 
     /// Cells escape pipes, gated cells carry their verdict, long tables fold.

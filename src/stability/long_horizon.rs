@@ -426,7 +426,7 @@ pub fn study(cases: &[Case], filter: &VariantFilter, opts: &StudyOptions) -> Res
                 let d = run_job(&jobs[i]);
                 if opts.progress {
                     let r = &d.record;
-                    eprintln!(
+                    crate::tell!(
                         "  long_horizon {}/{} {}/{}/{} {} steps: {:.1} s",
                         r.key.case,
                         r.key.scene,

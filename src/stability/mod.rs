@@ -183,7 +183,7 @@ pub(crate) fn timed_searches<J: Sync>(
                 r.wall_s = Some(crate::summary::Wall { min: w, median: w });
                 let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
                 if opts.progress && (k.is_multiple_of((total / 10).max(1)) || k == total) {
-                    eprintln!("  {label} {k}/{total} searches");
+                    crate::tell!("  {label} {k}/{total} searches");
                 }
                 r
             })

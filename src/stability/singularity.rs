@@ -126,7 +126,7 @@ pub fn study(
             .collect()
     });
     if opts.progress {
-        eprintln!("  singularity ladder: {} runs", records.len());
+        crate::tell!("  singularity ladder: {} runs", records.len());
     }
     Ok(Part {
         records,

@@ -28,6 +28,33 @@ pub fn temp_dir(tag: &str) -> PathBuf {
     d
 }
 
+/// A copy of the stored references (`references/` of the source tree, its case folders with
+/// their subfolders: the fiber column keeps its OpenSees runs in one) in a fresh temporary
+/// folder.
+pub fn copy_references(tag: &str) -> PathBuf {
+    fn copy_tree(from: &std::path::Path, to: &std::path::Path) {
+        std::fs::create_dir_all(to).unwrap();
+        for f in std::fs::read_dir(from).unwrap() {
+            let f = f.unwrap().path();
+            let target = to.join(f.file_name().unwrap());
+            if f.is_dir() {
+                copy_tree(&f, &target);
+            } else {
+                std::fs::copy(&f, target).unwrap();
+            }
+        }
+    }
+    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("references");
+    let dir = temp_dir(tag);
+    for case in std::fs::read_dir(&src).unwrap() {
+        let case = case.unwrap().path();
+        if case.is_dir() {
+            copy_tree(&case, &dir.join(case.file_name().unwrap()));
+        }
+    }
+    dir
+}
+
 /// A cases folder holding one catalogue case file, `file`, edited by `edit`.
 pub fn cases_with(tag: &str, file: &str, edit: impl Fn(&str) -> String) -> PathBuf {
     let d = temp_dir(tag);

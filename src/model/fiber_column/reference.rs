@@ -24,6 +24,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use crate::read_limited::{MANIFEST, REFERENCE, read_within};
 use crate::reference::{self, Stored};
 
 /// The columns a reference holds after `t`, in this order.
@@ -183,19 +184,20 @@ fn model_value(model: &serde_json::Value, path: &str) -> Option<f64> {
 /// The bytes of `file` under the OpenSees folder (`opensees_dir(root)`), its SHA-256 and
 /// path, checked against the folder's `MANIFEST.json`: the manifest's `provenance` block must
 /// name the tool, the command, the accuracy claim and the cross-check, and the file's hash
-/// must be the one it lists (else it was changed after generation). `what` names the
-/// reference in the error when the file cannot be read.
+/// must be the one it lists (else it was changed after generation). Both are read as regular
+/// files inside `root` of at most `read_limited::REFERENCE` and `MANIFEST` bytes. `what` names
+/// the reference in the error when the file cannot be read.
 pub fn read_listed(root: &Path, file: &str, what: &str) -> Result<(Vec<u8>, String, PathBuf), String> {
     let dir = opensees_dir(root);
     let path = dir.join(file);
     let shown = path.display().to_string();
-    let bytes = std::fs::read(&path).map_err(|e| {
-        format!("{shown}: {e}; the OpenSees reference of {what} is made by references/fiber_column/opensees/generate.py")
+    let bytes = read_within(root, &path, REFERENCE).map_err(|e| {
+        format!("{e}; the OpenSees reference of {what} is made by references/fiber_column/opensees/generate.py")
     })?;
     let sha = reference::sha256_hex(&bytes);
     let manifest_path = dir.join("MANIFEST.json");
-    let manifest: serde_json::Value = std::fs::read(&manifest_path)
-        .map_err(|e| format!("{}: {e}", manifest_path.display()))
+    let manifest: serde_json::Value = read_within(root, &manifest_path, MANIFEST)
+        .map_err(|e| e.to_string())
         .and_then(|b| {
             serde_json::from_slice(&b).map_err(|e| format!("{}: {e}", manifest_path.display()))
         })?;

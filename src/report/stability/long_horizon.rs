@@ -20,18 +20,17 @@ pub(super) fn load_long_series(dir: &Path, r: &Record) -> Option<LongSeries> {
     );
     let mut candidates = vec![];
     if let Some(rel) = &r.series {
-        candidates.push(dir.join(rel));
+        candidates.push(std::path::PathBuf::from(rel));
     }
     candidates.push(
-        dir.join("series/long_horizon")
+        Path::new("series/long_horizon")
             .join(&r.key.case)
             .join(&r.key.scene)
             .join(format!("{id}.json")),
     );
-    let v: serde_json::Value = candidates.iter().find_map(|p| {
-        let text = std::fs::read_to_string(p).ok()?;
-        serde_json::from_str(&text).ok()
-    })?;
+    let v = candidates
+        .iter()
+        .find_map(|rel| crate::report::data::load_json_inside(dir, rel))?;
     Some((
         column(&v, "t")?,
         column(&v, "energy_error")?,

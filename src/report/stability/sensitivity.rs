@@ -9,8 +9,7 @@ pub(super) fn is_sensitivity(r: &Record) -> bool {
 /// The growth series of a sensitivity record: `(t, G(t))`.
 pub(super) fn load_growth(dir: &Path, r: &Record) -> Option<Vec<(f64, f64)>> {
     let rel = r.series.as_ref()?;
-    let text = std::fs::read_to_string(dir.join(rel)).ok()?;
-    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    let v = crate::report::data::load_json_inside(dir, Path::new(rel))?;
     let (t, g) = (column(&v, "t")?, column(&v, "growth")?);
     Some(t.into_iter().zip(g).collect())
 }
