@@ -29,4 +29,5 @@ pub mod observe;
 pub mod ode;
 pub mod problem;
 pub mod reference;
+pub mod reference_check;
 pub mod run;

@@ -421,6 +421,6 @@ impl Problem for BeamProblem {
         super::reference::make(self, root)
     }
     fn check_reference(&self, root: &Path) -> Result<(bool, String), String> {
-        super::reference::check(self, root)
+        super::reference_check::check(self, root)
     }
 }
