@@ -26,7 +26,7 @@ use std::collections::BTreeMap;
 use super::layout::{Layer, Patch, fiber_section};
 use super::material::{
     Concrete01, Concrete01Params, Concrete02, Concrete02Params, Elastic, ElasticParams, Material,
-    Steel01, Steel01Params, Steel02, Steel02Params,
+    ParamError, Steel01, Steel01Params, Steel02, Steel02Params,
 };
 use super::section::{ElasticSection, FiberSection, Section};
 use crate::case::{Case, CaseError, Ctx, Res, Scene};
@@ -314,9 +314,9 @@ fn material(cx: &Ctx, key: &str, m: &RawMaterial) -> Res<Material> {
             "expected exactly one of elastic, concrete01, concrete02, steel01, steel02",
         );
     }
-    let named = |model: &str, r: Result<Material, String>| match r {
+    let named = |model: &str, r: Result<Material, ParamError>| match r {
         Ok(m) => Ok(m),
-        Err(e) => cx.err(format!("{key}.{model}"), e),
+        Err(e) => cx.err(format!("{key}.{model}.{}", e.key), e.message),
     };
     if let Some(p) = m.elastic {
         named("elastic", Elastic::new(p).map(Material::from))

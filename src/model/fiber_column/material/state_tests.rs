@@ -303,12 +303,15 @@ fn steel02_loop_dissipates_the_area_between_its_branches() {
     );
 }
 
+/// Every out-of-range or non-finite parameter is refused with its name and value, and the
+/// error's key is the parameter's struct field (the case file's key).
 #[test]
 fn constructors_refuse_bad_parameters_by_name() {
-    // Invariant: every out-of-range or non-finite parameter is refused with its name and value.
-    let bad = |r: Result<Material, String>, needle: &str| {
+    let bad = |r: Result<Material, ParamError>, needle: &str| {
         let e = r.expect_err(needle);
-        assert!(e.contains(needle), "{e:?} should name {needle}");
+        assert!(e.message.contains(needle), "{e:?} should name {needle}");
+        let named = super::opensees_name(e.key);
+        assert!(e.message.contains(&format!(" {named} = ")), "{e:?}: key {}", e.key);
     };
     let c01 = |p| Concrete01::new(p).map(Material::from);
     bad(
@@ -402,6 +405,13 @@ fn constructors_refuse_bad_parameters_by_name() {
             ..CORE_C02
         }),
         "ft = -3e6",
+    );
+    bad(
+        c02(Concrete02Params {
+            ft: 40e6,
+            ..CORE_C02
+        }),
+        "ft = 4e7 must be at most |fpc| = 3.6e7",
     );
     bad(
         c02(Concrete02Params {
