@@ -420,19 +420,24 @@ fn protocol(
     Ok(out)
 }
 
+/// The value of a key the loading's kind needs (optional in the schema, which takes every
+/// kind's keys), or an error naming it as missing.
+fn needed(cx: &Ctx, key: &str, x: Option<f64>, what: &str) -> Res<f64> {
+    match x {
+        Some(x) => Ok(x),
+        None => cx.err(key, format!("missing; this loading needs {what}")),
+    }
+}
+
 fn loading(cx: &Ctx, i: usize, l: &RawLoad, h: f64) -> Res<Loading> {
     let key = format!("scene[{i}].load");
     let axial = |cx: &Ctx| -> Res<(f64, usize)> {
-        let a = cx.positive(
-            &format!("{key}.axial"),
-            l.axial.unwrap_or(f64::NAN),
-            "a compressive axial load in N",
-        )?;
-        let s = count(
-            cx,
-            &format!("{key}.axial_steps"),
-            l.axial_steps.unwrap_or(f64::NAN),
-        )?;
+        let k = format!("{key}.axial");
+        let what = "a compressive axial load in N";
+        let a = cx.positive(&k, needed(cx, &k, l.axial, what)?, what)?;
+        let k = format!("{key}.axial_steps");
+        let what = "the axial load's step count";
+        let s = count(cx, &k, needed(cx, &k, l.axial_steps, what)?)?;
         Ok((a, s))
     };
     match (l.tip_force, l.tip_moment, &l.drifts, &l.pulse) {
@@ -444,12 +449,10 @@ fn loading(cx: &Ctx, i: usize, l: &RawLoad, h: f64) -> Res<Loading> {
         )),
         (None, None, Some(drifts), None) => {
             let (axial, axial_steps) = axial(cx)?;
-            let increment = cx.positive(
-                &format!("{key}.increment"),
-                l.increment.unwrap_or(f64::NAN),
-                "a displacement increment in m",
-            )?;
-            let cycles = count(cx, &format!("{key}.cycles"), l.cycles.unwrap_or(f64::NAN))?;
+            let (k, what) = (format!("{key}.increment"), "a displacement increment in m");
+            let increment = cx.positive(&k, needed(cx, &k, l.increment, what)?, what)?;
+            let k = format!("{key}.cycles");
+            let cycles = count(cx, &k, needed(cx, &k, l.cycles, "a cycle count")?)?;
             Ok(Loading::Cyclic {
                 axial,
                 axial_steps,

@@ -169,3 +169,46 @@ fn material_parameters_out_of_meaning_name_their_key() {
     assert!(e.message.contains("at most |fpc| = 3.6e7"), "{e}");
 }
 
+/// A key the loading's kind needs and the file leaves out (the axial load of a pulse or a
+/// cyclic scene, its step count, the protocol's increment and cycles) is named as missing,
+/// not reported as a NaN value.
+#[test]
+fn a_missing_loading_key_is_named() {
+    for (name, old, new, key) in [
+        (
+            "fiber_column_dynamic",
+            "load = { axial = 750.0e3, axial_steps = 10, pulse",
+            "load = { axial_steps = 10, pulse",
+            "scene[0].load.axial",
+        ),
+        (
+            "fiber_column_cyclic",
+            "load = { axial = 750.0e3, axial_steps = 10, drifts",
+            "load = { axial_steps = 10, drifts",
+            "scene[0].load.axial",
+        ),
+        (
+            "fiber_column_cyclic",
+            "axial = 750.0e3, axial_steps = 10, drifts",
+            "axial = 750.0e3, drifts",
+            "scene[0].load.axial_steps",
+        ),
+        (
+            "fiber_column_cyclic",
+            ", cycles = 2, increment = 5.0e-4 }",
+            ", cycles = 2 }",
+            "scene[0].load.increment",
+        ),
+        (
+            "fiber_column_cyclic",
+            ", cycles = 2, increment",
+            ", increment",
+            "scene[0].load.cycles",
+        ),
+    ] {
+        let e = refused(name, old, new);
+        assert_eq!(e.key, key, "{e}");
+        assert!(e.message.starts_with("missing"), "{e}");
+        assert!(!e.message.contains("NaN"), "{e}");
+    }
+}
