@@ -135,6 +135,17 @@ pub enum ReferenceKind {
     External,
 }
 
+impl ReferenceKind {
+    /// Its spelling in a case file.
+    pub fn name(self) -> &'static str {
+        match self {
+            ReferenceKind::Numerical => "numerical",
+            ReferenceKind::Exact => "exact",
+            ReferenceKind::External => "external",
+        }
+    }
+}
+
 /// A family's own data of a case or of a scene, held without the shared code naming its
 /// type; the family reads it back with [`Case::physics`] / [`Scene::physics`].
 pub trait Payload: Any + fmt::Debug + Send + Sync {
@@ -522,6 +533,22 @@ impl Ctx<'_> {
                         .map(|m| m.name)
                         .collect::<Vec<_>>()
                         .join(", ")
+                ),
+            );
+        }
+        if !family.references.contains(&raw.reference) {
+            return self.err(
+                "reference",
+                format!(
+                    "`{}`; a {} case's references are {}",
+                    raw.reference.name(),
+                    family.model,
+                    family
+                        .references
+                        .iter()
+                        .map(|k| format!("`{}`", k.name()))
+                        .collect::<Vec<_>>()
+                        .join(" or ")
                 ),
             );
         }

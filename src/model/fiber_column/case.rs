@@ -12,8 +12,9 @@
 //! mass in both translations, damping `C = a0 M`, ground acceleration
 //! `amplitude sin(2 pi t / period)` for `t <= duration`, along the bending plane).
 //!
-//! Invariants after loading: every number finite, every length, stiffness, strength
-//! magnitude and count positive; the materials' own checks (`material/`) name the parameter
+//! Invariants after loading: the case's `reference` is `exact` when its scenes are static
+//! and `external` when they are cyclic or dynamic; every number finite, every length,
+//! stiffness, strength magnitude and count positive; the materials' own checks (`material/`) name the parameter
 //! they refuse; the fiber layout lies inside its outline and has fibers (`layout.rs`); a
 //! cyclic scene's `t_end` is its protocol's length in increments and every drift amplitude
 //! is a whole number of increments (so every ladder step that divides the score grid lands
@@ -29,7 +30,7 @@ use super::material::{
     ParamError, Steel01, Steel01Params, Steel02, Steel02Params,
 };
 use super::section::{ElasticSection, FiberSection, Section};
-use crate::case::{Case, CaseError, Ctx, Res, Scene};
+use crate::case::{Case, CaseError, Ctx, ReferenceKind, Res, Scene};
 
 crate::case_schema! {
     case RawCase / CaseOwn {
@@ -489,12 +490,29 @@ fn loading(cx: &Ctx, i: usize, l: &RawLoad, h: f64) -> Res<Loading> {
 
 fn scene_physics(
     cx: &Ctx,
-    i: usize,
-    grid_t_end: f64,
+    (i, grid_t_end, reference): (usize, f64, ReferenceKind),
     s: &SceneOwn,
     c: &ColumnCase,
 ) -> Res<ColumnScene> {
     let loading = loading(cx, i, &s.load, c.height)?;
+    // A static scene is scored against the exact elastica, a cyclic or pulse scene against
+    // OpenSees' run: the case's `reference` must say which.
+    let wanted = match loading.kind() {
+        "static" => ReferenceKind::Exact,
+        _ => ReferenceKind::External,
+    };
+    if reference != wanted {
+        return cx.err(
+            "reference",
+            format!(
+                "`{}`, but scene[{i}] is {} ({} loading), whose reference is `{}`",
+                reference.name(),
+                loading.kind(),
+                loading.kind(),
+                wanted.name()
+            ),
+        );
+    }
     let section = match c.elastic {
         Some((ea, ei)) => {
             if !s.materials.is_empty() {
@@ -536,12 +554,15 @@ pub fn load(file: &str, text: &str) -> Result<Case, CaseError> {
     let raw: RawCase = crate::case::parse(file, text)?;
     let (shared, own, scenes) = raw.split();
     let t_ends: Vec<f64> = scenes.iter().map(|(g, _)| g.t_end).collect();
+    let reference = shared.reference;
     Ctx { file }.assemble(
         &super::family::FAMILY,
         shared,
         |cx| case_physics(cx, &own),
         scenes,
-        |cx, i, s: &SceneOwn, c: &ColumnCase| scene_physics(cx, i, t_ends[i], s, c),
+        |cx, i, s: &SceneOwn, c: &ColumnCase| {
+            scene_physics(cx, (i, t_ends[i], reference), s, c)
+        },
     )
 }
 

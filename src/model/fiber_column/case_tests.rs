@@ -212,3 +212,31 @@ fn a_missing_loading_key_is_named() {
         assert!(!e.message.contains("NaN"), "{e}");
     }
 }
+
+/// The case's `reference` must be the one its scenes are scored against: `exact` for the
+/// static scenes (the elastica), `external` for the cyclic and pulse scenes (OpenSees' runs);
+/// a kind the family has not (`numerical`) is refused before the scenes are read.
+#[test]
+fn the_reference_kind_fits_the_scenes() {
+    let e = refused(
+        "fiber_column_static",
+        "reference = \"exact\"",
+        "reference = \"external\"",
+    );
+    assert_eq!(e.key, "reference", "{e}");
+    assert!(e.message.contains("scene[0] is static"), "{e}");
+    let e = refused(
+        "fiber_column_dynamic",
+        "reference = \"external\"",
+        "reference = \"exact\"",
+    );
+    assert_eq!(e.key, "reference", "{e}");
+    assert!(e.message.contains("whose reference is `external`"), "{e}");
+    let e = refused(
+        "fiber_column_cyclic",
+        "reference = \"external\"",
+        "reference = \"numerical\"",
+    );
+    assert_eq!(e.key, "reference", "{e}");
+    assert!(e.message.contains("`exact` or `external`"), "{e}");
+}

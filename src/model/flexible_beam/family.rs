@@ -167,6 +167,8 @@ pub static FAMILY: Family = Family {
     // The explicit method whose limit the search measures and the implicit ones of the
     // structural and ODE forms.
     stability_quick: &["rk4", "newmark", "implicit_midpoint", "gen_alpha_i3"],
+    // Its references: `fe_exact` integrated by `mbdbench reference` (numerical).
+    references: &[crate::case::ReferenceKind::Numerical],
 };
 
 /// The formulations, in report order.

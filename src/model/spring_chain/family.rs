@@ -95,6 +95,8 @@ pub static FAMILY: Family = Family {
     compile,
     figures: &FIGURES,
     stability_quick: &["rk4"],
+    // Its references: the chain's closed form (exact).
+    references: &[crate::case::ReferenceKind::Exact],
 };
 
 /// A monomorphised run.
