@@ -19,7 +19,8 @@ use std::path::Path;
 use super::case::{ColumnCase, ColumnScene, Loading};
 use super::elastica::{elastica_tip, rollup_tip};
 use super::family::{FAMILY, table};
-use super::reference::{self as fref, CrossCheck, ExactReference, External, Provenance, Track};
+use super::opensees::{self, External};
+use super::reference::{CrossCheck, ExactReference, Provenance, Track};
 use super::run::{ColumnObs, Form, Keep, RunOut, Setup};
 use super::shooting::shooting_tip;
 use crate::case::{Case, CaseError, Scene};
@@ -126,32 +127,35 @@ impl FiberProblem {
         Ok((d(&tip), d(&shot)))
     }
 
-    /// The model the OpenSees reference must have been made of.
-    fn model_check(&self) -> fref::ModelCheck {
-        let mut m: fref::ModelCheck = vec![("H", self.setup.case.height, "column.height")];
+    /// The scene's OpenSees reference, checked (`opensees.rs`), with the model the case says
+    /// it must have been made of (height, axial load, and the pulse's mass and damping).
+    fn external(&self, root: &Path) -> Result<External, String> {
+        let g = &self.setup.grid;
+        let mut want = vec![("H", self.setup.case.height, "column.height")];
         match *self.loading() {
-            Loading::Cyclic { axial, .. } => m.push(("P", axial, "load.axial")),
+            Loading::Cyclic { axial, .. } => want.push(("P", axial, "load.axial")),
             Loading::Pulse {
                 axial, mass, a0, ..
             } => {
-                m.push(("P", axial, "load.axial"));
-                m.push(("mass", mass, "load.pulse.mass"));
-                m.push(("damping.a0", a0, "load.pulse.a0"));
+                want.push(("P", axial, "load.axial"));
+                want.push(("mass", mass, "load.pulse.mass"));
+                want.push(("damping.a0", a0, "load.pulse.a0"));
             }
             _ => {}
         }
-        m
-    }
-
-    fn external(&self, root: &Path) -> Result<External, String> {
-        let g = &self.setup.grid;
-        fref::load_external(
-            root,
-            &self.scene,
-            g.t_end,
-            g.score_every,
-            &self.model_check(),
-        )
+        let same_model = |model: &serde_json::Value, _: &serde_json::Value| {
+            for (key, value, case_key) in &want {
+                let got = key.split('.').try_fold(model, |v, k| v.get(k));
+                let got = got.and_then(|v| v.as_f64());
+                if !got.is_some_and(|g| (g - value).abs() <= 1e-12 * value.abs()) {
+                    return Err(format!(
+                        "stale: key `model.{key}` is {got:?}, the case's `{case_key}` is {value}"
+                    ));
+                }
+            }
+            Ok(())
+        };
+        opensees::load_external(root, &self.scene, g.t_end, g.score_every, &same_model)
     }
 
     /// The exact track at the score times and the shooting cross-check's largest
@@ -338,8 +342,9 @@ impl Problem for FiberProblem {
         if !matches!(self.loading(), Loading::TipForce(_) | Loading::TipMoment(_)) {
             let x = self.external(root)?;
             return Ok(format!(
-                "{}: external reference (OpenSees {}), not made by mbdbench; its SHA-256, \
-                 schema, columns, score times and model check out; regenerate with: {}",
+                "{}: external reference (OpenSees {}), not made by mbdbench; the folder's \
+                 SHA-256s and generator, its schema, columns, claims, score times and model \
+                 check out; regenerate with: {}",
                 x.path.display(),
                 x.opensees,
                 x.regenerate
@@ -388,9 +393,9 @@ impl Problem for FiberProblem {
                 Ok(x) => (
                     true,
                     format!(
-                        "{}/{}: external OpenSees reference {}: SHA-256 as in MANIFEST.json, \
-                         schema, columns, score times and model as the case's; regenerate \
-                         with: {}",
+                        "{}/{}: external OpenSees reference {}: every file MANIFEST.json \
+                         lists (the generator too) with its SHA-256, schema, columns, claims, \
+                         score times and model as the case's; regenerate with: {}",
                         self.case,
                         self.scene,
                         x.path.display(),
