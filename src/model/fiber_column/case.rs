@@ -74,71 +74,71 @@ pub(crate) struct RawElasticSection {
 #[derive(Deserialize, Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawPatch {
-    name: String,
-    material: String,
+    pub(super) name: String,
+    pub(super) material: String,
     #[serde(deserialize_with = "crate::case::exact::array")]
-    y: [f64; 2],
+    pub(super) y: [f64; 2],
     #[serde(deserialize_with = "crate::case::exact::array")]
-    z: [f64; 2],
-    ny: f64,
-    nz: f64,
+    pub(super) z: [f64; 2],
+    pub(super) ny: f64,
+    pub(super) nz: f64,
 }
 
 #[derive(Deserialize, Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawLayer {
-    name: String,
-    material: String,
-    y: f64,
+    pub(super) name: String,
+    pub(super) material: String,
+    pub(super) y: f64,
     #[serde(deserialize_with = "crate::case::exact::array")]
-    z: [f64; 2],
-    n: f64,
-    area: f64,
+    pub(super) z: [f64; 2],
+    pub(super) n: f64,
+    pub(super) area: f64,
 }
 
 #[derive(Deserialize, Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawSection {
-    elastic: Option<RawElasticSection>,
-    depth: Option<f64>,
-    width: Option<f64>,
+    pub(super) elastic: Option<RawElasticSection>,
+    pub(super) depth: Option<f64>,
+    pub(super) width: Option<f64>,
     #[serde(default)]
-    patches: Vec<RawPatch>,
+    pub(super) patches: Vec<RawPatch>,
     #[serde(default)]
-    layers: Vec<RawLayer>,
+    pub(super) layers: Vec<RawLayer>,
 }
 
 #[derive(Deserialize, Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawMaterial {
-    elastic: Option<ElasticParams>,
-    concrete01: Option<Concrete01Params>,
-    concrete02: Option<Concrete02Params>,
-    steel01: Option<Steel01Params>,
-    steel02: Option<Steel02Params>,
+    pub(super) elastic: Option<ElasticParams>,
+    pub(super) concrete01: Option<Concrete01Params>,
+    pub(super) concrete02: Option<Concrete02Params>,
+    pub(super) steel01: Option<Steel01Params>,
+    pub(super) steel02: Option<Steel02Params>,
 }
 
 #[derive(Deserialize, Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawPulse {
-    mass: f64,
-    a0: f64,
-    amplitude: f64,
-    period: f64,
-    duration: f64,
+    pub(super) mass: f64,
+    pub(super) a0: f64,
+    pub(super) amplitude: f64,
+    pub(super) period: f64,
+    pub(super) duration: f64,
 }
 
 #[derive(Deserialize, Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawLoad {
-    tip_force: Option<f64>,
-    tip_moment: Option<f64>,
-    axial: Option<f64>,
-    axial_steps: Option<f64>,
-    drifts: Option<Vec<f64>>,
-    cycles: Option<f64>,
-    increment: Option<f64>,
-    pulse: Option<RawPulse>,
+    pub(super) tip_force: Option<f64>,
+    pub(super) tip_moment: Option<f64>,
+    pub(super) axial: Option<f64>,
+    pub(super) axial_steps: Option<f64>,
+    pub(super) drifts: Option<Vec<f64>>,
+    pub(super) cycles: Option<f64>,
+    pub(super) increment: Option<f64>,
+    pub(super) pulse: Option<RawPulse>,
 }
 
 /// The numerical settings of a case.
@@ -147,7 +147,9 @@ pub struct Numerics {
     /// Newton's energy-increment tolerance `|dx . r| / 2` (J).
     pub tol: f64,
     pub max_iter: usize,
-    /// The force-based element's energy tolerance (J) and iteration limit.
+    /// The force-based element's tolerance and iteration limit: its iterations stop when
+    /// the energy of a correction `|dv . dq|` is below `element_tol` times the element's
+    /// work `|v . q|` (`basic.rs`), so the tolerance is relative, not in J.
     pub element_tol: f64,
     pub element_max_iter: usize,
     /// Integration points per element (Gauss-Lobatto, force-based; Gauss-Legendre, rivals).
@@ -168,7 +170,7 @@ pub struct ColumnCase {
     /// `Some((ea, ei))` for an elastic section.
     pub elastic: Option<(f64, f64)>,
     /// The raw layout (fiber sections), built per scene with its materials.
-    raw_section: RawSection,
+    pub(super) raw_section: RawSection,
     /// The case's own keys as written (the physics hash).
     inputs: Value,
 }
@@ -229,6 +231,10 @@ impl Loading {
 pub struct ColumnScene {
     pub section: Section,
     pub loading: Loading,
+    /// The scene's materials and load as written (what an external reference's model is
+    /// compared with, key by key: `opensees_model.rs`).
+    pub(super) raw_materials: BTreeMap<String, RawMaterial>,
+    pub(super) raw_load: RawLoad,
     inputs: Value,
 }
 
@@ -255,7 +261,7 @@ fn numerics(cx: &Ctx, n: &RawNumerics) -> Res<Numerics> {
     Ok(Numerics {
         tol: cx.positive("numerics.tol", n.tol, "an energy in J")?,
         max_iter: count(cx, "numerics.max_iter", n.max_iter)?,
-        element_tol: cx.positive("numerics.element_tol", n.element_tol, "an energy in J")?,
+        element_tol: cx.positive("numerics.element_tol", n.element_tol, "a relative energy")?,
         element_max_iter: count(cx, "numerics.element_max_iter", n.element_max_iter)?,
         points,
         elements: count(cx, "numerics.elements", n.elements)?,
@@ -545,6 +551,8 @@ fn scene_physics(
     Ok(ColumnScene {
         section,
         loading,
+        raw_materials: s.materials.clone(),
+        raw_load: s.load.clone(),
         inputs,
     })
 }

@@ -11,7 +11,7 @@
 //! - **the record** ([`load_external`]): its top-level keys are the schema's, no other; its
 //!   schema and scene; its `generator` block names a listed script with the hash the
 //!   manifest lists and the manifest's versions; its `model` and `settings` are the case's
-//!   (a check the caller passes); `data`
+//!   (a check the caller passes: `opensees_model.rs` compares them field by field); `data`
 //!   holds `t` and the five columns of [`COLUMNS`], no other, of one length, `t` strictly
 //!   increasing (a repeated row is refused), every value finite, no column zero throughout
 //!   (its peak divides the relative errors and the claims); every score time is present;
@@ -225,7 +225,7 @@ pub struct External {
 }
 
 /// The caller's comparison of a record's `model` and `settings` with its case: `Err` names
-/// the first differing key of each side.
+/// the first differing key of each side (`opensees_model.rs`).
 pub type ModelCheck<'a> = &'a dyn Fn(&Value, &Value) -> Result<(), String>;
 
 /// The record's generator is a listed script with its listed hash, run with the manifest's

@@ -20,6 +20,7 @@ use super::case::{ColumnCase, ColumnScene, Loading};
 use super::elastica::{elastica_tip, rollup_tip};
 use super::family::{FAMILY, table};
 use super::opensees::{self, External};
+use super::opensees_model;
 use super::reference::{CrossCheck, ExactReference, Provenance, Track};
 use super::run::{ColumnObs, Form, Keep, RunOut, Setup};
 use super::shooting::shooting_tip;
@@ -44,6 +45,8 @@ enum Attached {
 pub struct FiberProblem {
     case: String,
     scene: String,
+    /// The scene's place in its case file (`scene[i]` in case keys).
+    scene_index: usize,
     inputs_sha256: String,
     primary_metric: String,
     energy_scale: f64,
@@ -80,6 +83,7 @@ impl FiberProblem {
         Ok(FiberProblem {
             case: case.name.clone(),
             scene: scene.name.clone(),
+            scene_index: scene.index,
             inputs_sha256: crate::case::inputs_sha256(case, scene),
             primary_metric: case.primary_metric.clone(),
             energy_scale: case.energy_scale,
@@ -127,33 +131,13 @@ impl FiberProblem {
         Ok((d(&tip), d(&shot)))
     }
 
-    /// The scene's OpenSees reference, checked (`opensees.rs`), with the model the case says
-    /// it must have been made of (height, axial load, and the pulse's mass and damping).
+    /// The scene's OpenSees reference, checked (`opensees.rs`) and compared with the case's
+    /// model field by field (`opensees_model.rs`).
     fn external(&self, root: &Path) -> Result<External, String> {
-        let g = &self.setup.grid;
-        let mut want = vec![("H", self.setup.case.height, "column.height")];
-        match *self.loading() {
-            Loading::Cyclic { axial, .. } => want.push(("P", axial, "load.axial")),
-            Loading::Pulse {
-                axial, mass, a0, ..
-            } => {
-                want.push(("P", axial, "load.axial"));
-                want.push(("mass", mass, "load.pulse.mass"));
-                want.push(("damping.a0", a0, "load.pulse.a0"));
-            }
-            _ => {}
-        }
-        let same_model = |model: &serde_json::Value, _: &serde_json::Value| {
-            for (key, value, case_key) in &want {
-                let got = key.split('.').try_fold(model, |v, k| v.get(k));
-                let got = got.and_then(|v| v.as_f64());
-                if !got.is_some_and(|g| (g - value).abs() <= 1e-12 * value.abs()) {
-                    return Err(format!(
-                        "stale: key `model.{key}` is {got:?}, the case's `{case_key}` is {value}"
-                    ));
-                }
-            }
-            Ok(())
+        let (g, s) = (&self.setup.grid, &self.setup);
+        let same_model = |model: &serde_json::Value, settings: &serde_json::Value| {
+            let at = (self.scene_index, g.t_end);
+            opensees_model::check(&s.case, &s.scene, at.0, at.1, model, settings)
         };
         opensees::load_external(root, &self.scene, g.t_end, g.score_every, &same_model)
     }
@@ -343,8 +327,8 @@ impl Problem for FiberProblem {
             let x = self.external(root)?;
             return Ok(format!(
                 "{}: external reference (OpenSees {}), not made by mbdbench; the folder's \
-                 SHA-256s and generator, its schema, columns, claims, score times and model \
-                 check out; regenerate with: {}",
+                 SHA-256s and generator, its schema, columns, claims, score times and whole \
+                 model check out; regenerate with: {}",
                 x.path.display(),
                 x.opensees,
                 x.regenerate
@@ -395,7 +379,8 @@ impl Problem for FiberProblem {
                     format!(
                         "{}/{}: external OpenSees reference {}: every file MANIFEST.json \
                          lists (the generator too) with its SHA-256, schema, columns, claims, \
-                         score times and model as the case's; regenerate with: {}",
+                         score times, and every field of its model and settings as the \
+                         case's; regenerate with: {}",
                         self.case,
                         self.scene,
                         x.path.display(),

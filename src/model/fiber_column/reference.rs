@@ -12,7 +12,7 @@
 //! **External** (`references/fiber_column/opensees/<scene>.json`): OpenSees' runs of the same
 //! column, made by the Python script beside them; `mbdbench` cannot recompute them, so it
 //! checks them (`opensees.rs`: the folder's manifest, the record's schema, columns and
-//! claims, and its model against the case's).
+//! claims) and compares their model with the case field by field (`opensees_model.rs`).
 //! `reference --check` says how to regenerate them.
 use serde::{Deserialize, Serialize};
 

@@ -5,7 +5,7 @@
 //! generator hash is not the manifest's; the record's checks (with the manifest re-hashed, so
 //! that only they can refuse) refuse an unknown key, a repeated row, a column that is zero
 //! throughout, and a claim that is negative, huge, null or missing; each names the file and
-//! the key.
+//! the key. The model's comparison with the case is `opensees_model_tests.rs`.
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
