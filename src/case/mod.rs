@@ -501,6 +501,27 @@ impl Ctx<'_> {
         }
     }
 
+    /// Refuses a `reference` kind the family cannot attach.
+    fn reference_kind(&self, family: &crate::problem::Family, kind: ReferenceKind) -> Res<()> {
+        if family.references.contains(&kind) {
+            return Ok(());
+        }
+        let kinds: Vec<String> = family
+            .references
+            .iter()
+            .map(|k| format!("`{}`", k.name()))
+            .collect();
+        self.err(
+            "reference",
+            format!(
+                "`{}`; a {} case's references are {}",
+                kind.name(),
+                family.model,
+                kinds.join(" or ")
+            ),
+        )
+    }
+
     /// The shared part of a case: checks the shared keys, lets the family check its own
     /// (`case_physics` once, before the scenes; `scene_physics` per scene, after its name),
     /// resolves every scene's grid and ladders, then the gates and `[stability]`.
@@ -536,22 +557,7 @@ impl Ctx<'_> {
                 ),
             );
         }
-        if !family.references.contains(&raw.reference) {
-            return self.err(
-                "reference",
-                format!(
-                    "`{}`; a {} case's references are {}",
-                    raw.reference.name(),
-                    family.model,
-                    family
-                        .references
-                        .iter()
-                        .map(|k| format!("`{}`", k.name()))
-                        .collect::<Vec<_>>()
-                        .join(" or ")
-                ),
-            );
-        }
+        self.reference_kind(family, raw.reference)?;
         let energy_scale = self.positive("energy_scale", raw.energy_scale, "an energy in J")?;
         let max_steps = match raw.max_steps {
             Some(x) => self.count("max_steps", x)?,
