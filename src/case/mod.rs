@@ -135,6 +135,17 @@ pub enum ReferenceKind {
     External,
 }
 
+impl ReferenceKind {
+    /// Its spelling in a case file.
+    pub fn name(self) -> &'static str {
+        match self {
+            ReferenceKind::Numerical => "numerical",
+            ReferenceKind::Exact => "exact",
+            ReferenceKind::External => "external",
+        }
+    }
+}
+
 /// A family's own data of a case or of a scene, held without the shared code naming its
 /// type; the family reads it back with [`Case::physics`] / [`Scene::physics`].
 pub trait Payload: Any + fmt::Debug + Send + Sync {
@@ -565,6 +576,27 @@ impl Ctx<'_> {
         Ok(Some(t.to_vec()))
     }
 
+    /// Refuses a `reference` kind the family cannot attach.
+    fn reference_kind(&self, family: &crate::problem::Family, kind: ReferenceKind) -> Res<()> {
+        if family.references.contains(&kind) {
+            return Ok(());
+        }
+        let kinds: Vec<String> = family
+            .references
+            .iter()
+            .map(|k| format!("`{}`", k.name()))
+            .collect();
+        self.err(
+            "reference",
+            format!(
+                "`{}`; a {} case's references are {}",
+                kind.name(),
+                family.model,
+                kinds.join(" or ")
+            ),
+        )
+    }
+
     /// The shared part of a case: checks the shared keys, lets the family check its own
     /// (`case_physics` once, before the scenes; `scene_physics` per scene, after its name),
     /// resolves every scene's grid and ladders, then the gates and `[stability]`.
@@ -592,6 +624,7 @@ impl Ctx<'_> {
                 ),
             );
         }
+        self.reference_kind(family, raw.reference)?;
         let energy_scale = self.positive("energy_scale", raw.energy_scale, "an energy in J")?;
         let max_steps = match raw.max_steps {
             Some(x) => self.count("max_steps", x)?,

@@ -253,6 +253,35 @@ fn unknown_key() {
     );
 }
 
+/// A `reference` kind the case's family cannot attach is refused at load, naming the key
+/// `reference`: `external` (another program's stored run) on the rigid body and on the
+/// flexible beam, `exact` on the beam (its reference is integrated).
+#[test]
+fn a_reference_kind_the_family_cannot_attach_is_refused() {
+    let e = error_at(
+        &edited("reference = \"numerical\"", "reference = \"external\""),
+        "reference",
+    );
+    assert!(e.message.contains("`numerical` or `exact`"), "{e}");
+    let beam = include_str!("../../cases/flexible_beam.toml");
+    let label = "cases/flexible_beam.toml";
+    assert!(beam.contains("reference = \"numerical\""));
+    for kind in ["external", "exact"] {
+        let text = beam.replacen(
+            "reference = \"numerical\"",
+            &format!("reference = \"{kind}\""),
+            1,
+        );
+        let e = load_str(label, &text).expect_err(kind);
+        assert_eq!(
+            (e.file.as_str(), e.key.as_str()),
+            (label, "reference"),
+            "{e}"
+        );
+        assert!(e.message.starts_with(&format!("`{kind}`")), "{e}");
+    }
+}
+
 // A wrong type is named with the path of the value, down to an array index.
 #[test]
 fn wrong_type() {

@@ -237,6 +237,9 @@ pub struct Family {
     /// (`stability::seam_search`; the full tier searches every fixed-step integrator). A
     /// family with a study of its own (the rigid body) leaves it empty.
     pub stability_quick: &'static [&'static str],
+    /// The reference kinds its problems can attach (`reference` in a case file); a case
+    /// naming another is refused at load, by that key.
+    pub references: &'static [crate::case::ReferenceKind],
 }
 
 impl std::fmt::Debug for Family {

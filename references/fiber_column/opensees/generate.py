@@ -18,6 +18,15 @@ compared against.  It writes, into the directory holding this file:
 * ``MANIFEST.json``      -- SHA-256 of every output, of this script and of
   its companions.
 
+``MANIFEST.json`` and ``elastica.json`` carry a ``provenance`` block (tool,
+command, accuracy claim, cross-check) written by hand after generation, since
+its cross-check quotes mbdbench's measurements on these records; this script
+copies the block from the file it overwrites (``carried_provenance``), so a
+regeneration keeps it.  mbdbench refuses a record whose model is not its
+case's, field by field (src/model/fiber_column/opensees_model.rs), so every
+input of a run is written into the record's ``model`` and ``settings`` as a
+number or a fixed convention string.
+
 Every scene is also rerun at half the increment (0.25 mm, or dt/2) and the
 differences at the common points are stored in the record
 (``half_increment``) as the accuracy claim of the reference.
@@ -685,6 +694,8 @@ def make_pulse():
         "mass": TOP_MASS, "mass_dofs": "X and Y of the top node; rotation "
                                        "massless", "g0": G0,
         "ground_motion": {
+            "amplitude": PULSE_AMPLITUDE, "period": PULSE_PERIOD,
+            "start": 0.0, "duration": PULSE_END,
             "direction": "X", "a_g": "%r * sin(2 pi t / %r) for 0 <= t <= %r,"
                                      " else 0" % (PULSE_AMPLITUDE,
                                                   PULSE_PERIOD, PULSE_END),
@@ -728,8 +739,21 @@ def make_pulse():
     return doc
 
 
+def carried_provenance(name):
+    """The ``provenance`` block of the file ``name`` about to be overwritten
+    (None when it has none): written by hand after generation, carried over."""
+    path = os.path.join(HERE, name)
+    if not os.path.exists(path):
+        return None
+    with open(path) as fh:
+        return json.load(fh).get("provenance")
+
+
 def make_elastica():
     doc = header("elastica")
+    provenance = carried_provenance("elastica.json")
+    if provenance is not None:
+        doc["provenance"] = provenance
     doc["model"] = {
         "L": EL_L, "E": EL_E, "A": EL_A, "I": EL_I, "EI": EL_E * EL_I,
         "EA": EL_E * EL_A, "alphas_PL2_over_EI": list(EL_ALPHAS),
@@ -785,6 +809,9 @@ def write_manifest():
     man = {"schema": "mbdbench.opensees_manifest/1",
            "opensees": OPENSEES_VERSION, "openseespy": OPENSEESPY_VERSION,
            "python": platform.python_version(), "sha256": files}
+    provenance = carried_provenance("MANIFEST.json")
+    if provenance is not None:
+        man["provenance"] = provenance
     write_json("MANIFEST.json", man)
 
 

@@ -12,8 +12,9 @@
 //! mass in both translations, damping `C = a0 M`, ground acceleration
 //! `amplitude sin(2 pi t / period)` for `t <= duration`, along the bending plane).
 //!
-//! Invariants after loading: every number finite, every length, stiffness, strength
-//! magnitude and count positive; the materials' own checks (`material/`) name the parameter
+//! Invariants after loading: the case's `reference` is `exact` when its scenes are static
+//! and `external` when they are cyclic or dynamic; every number finite, every length,
+//! stiffness, strength magnitude and count positive; the materials' own checks (`material/`) name the parameter
 //! they refuse; the fiber layout lies inside its outline and has fibers (`layout.rs`); a
 //! cyclic scene's `t_end` is its protocol's length in increments and every drift amplitude
 //! is a whole number of increments (so every ladder step that divides the score grid lands
@@ -26,10 +27,10 @@ use std::collections::BTreeMap;
 use super::layout::{Layer, Patch, fiber_section};
 use super::material::{
     Concrete01, Concrete01Params, Concrete02, Concrete02Params, Elastic, ElasticParams, Material,
-    Steel01, Steel01Params, Steel02, Steel02Params,
+    ParamError, Steel01, Steel01Params, Steel02, Steel02Params,
 };
 use super::section::{ElasticSection, FiberSection, Section};
-use crate::case::{Case, CaseError, Ctx, Res, Scene};
+use crate::case::{Case, CaseError, Ctx, ReferenceKind, Res, Scene};
 
 crate::case_schema! {
     case RawCase / CaseOwn {
@@ -73,71 +74,71 @@ pub(crate) struct RawElasticSection {
 #[derive(Deserialize, Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawPatch {
-    name: String,
-    material: String,
+    pub(super) name: String,
+    pub(super) material: String,
     #[serde(deserialize_with = "crate::case::exact::array")]
-    y: [f64; 2],
+    pub(super) y: [f64; 2],
     #[serde(deserialize_with = "crate::case::exact::array")]
-    z: [f64; 2],
-    ny: f64,
-    nz: f64,
+    pub(super) z: [f64; 2],
+    pub(super) ny: f64,
+    pub(super) nz: f64,
 }
 
 #[derive(Deserialize, Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawLayer {
-    name: String,
-    material: String,
-    y: f64,
+    pub(super) name: String,
+    pub(super) material: String,
+    pub(super) y: f64,
     #[serde(deserialize_with = "crate::case::exact::array")]
-    z: [f64; 2],
-    n: f64,
-    area: f64,
+    pub(super) z: [f64; 2],
+    pub(super) n: f64,
+    pub(super) area: f64,
 }
 
 #[derive(Deserialize, Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawSection {
-    elastic: Option<RawElasticSection>,
-    depth: Option<f64>,
-    width: Option<f64>,
+    pub(super) elastic: Option<RawElasticSection>,
+    pub(super) depth: Option<f64>,
+    pub(super) width: Option<f64>,
     #[serde(default)]
-    patches: Vec<RawPatch>,
+    pub(super) patches: Vec<RawPatch>,
     #[serde(default)]
-    layers: Vec<RawLayer>,
+    pub(super) layers: Vec<RawLayer>,
 }
 
 #[derive(Deserialize, Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawMaterial {
-    elastic: Option<ElasticParams>,
-    concrete01: Option<Concrete01Params>,
-    concrete02: Option<Concrete02Params>,
-    steel01: Option<Steel01Params>,
-    steel02: Option<Steel02Params>,
+    pub(super) elastic: Option<ElasticParams>,
+    pub(super) concrete01: Option<Concrete01Params>,
+    pub(super) concrete02: Option<Concrete02Params>,
+    pub(super) steel01: Option<Steel01Params>,
+    pub(super) steel02: Option<Steel02Params>,
 }
 
 #[derive(Deserialize, Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawPulse {
-    mass: f64,
-    a0: f64,
-    amplitude: f64,
-    period: f64,
-    duration: f64,
+    pub(super) mass: f64,
+    pub(super) a0: f64,
+    pub(super) amplitude: f64,
+    pub(super) period: f64,
+    pub(super) duration: f64,
 }
 
 #[derive(Deserialize, Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawLoad {
-    tip_force: Option<f64>,
-    tip_moment: Option<f64>,
-    axial: Option<f64>,
-    axial_steps: Option<f64>,
-    drifts: Option<Vec<f64>>,
-    cycles: Option<f64>,
-    increment: Option<f64>,
-    pulse: Option<RawPulse>,
+    pub(super) tip_force: Option<f64>,
+    pub(super) tip_moment: Option<f64>,
+    pub(super) axial: Option<f64>,
+    pub(super) axial_steps: Option<f64>,
+    pub(super) drifts: Option<Vec<f64>>,
+    pub(super) cycles: Option<f64>,
+    pub(super) increment: Option<f64>,
+    pub(super) pulse: Option<RawPulse>,
 }
 
 /// The numerical settings of a case.
@@ -146,7 +147,9 @@ pub struct Numerics {
     /// Newton's energy-increment tolerance `|dx . r| / 2` (J).
     pub tol: f64,
     pub max_iter: usize,
-    /// The force-based element's energy tolerance (J) and iteration limit.
+    /// The force-based element's tolerance and iteration limit: its iterations stop when
+    /// the energy of a correction `|dv . dq|` is below `element_tol` times the element's
+    /// work `|v . q|` (`basic.rs`), so the tolerance is relative, not in J.
     pub element_tol: f64,
     pub element_max_iter: usize,
     /// Integration points per element (Gauss-Lobatto, force-based; Gauss-Legendre, rivals).
@@ -167,7 +170,7 @@ pub struct ColumnCase {
     /// `Some((ea, ei))` for an elastic section.
     pub elastic: Option<(f64, f64)>,
     /// The raw layout (fiber sections), built per scene with its materials.
-    raw_section: RawSection,
+    pub(super) raw_section: RawSection,
     /// The case's own keys as written (the physics hash).
     inputs: Value,
 }
@@ -228,6 +231,10 @@ impl Loading {
 pub struct ColumnScene {
     pub section: Section,
     pub loading: Loading,
+    /// The scene's materials and load as written (what an external reference's model is
+    /// compared with, key by key: `opensees_model.rs`).
+    pub(super) raw_materials: BTreeMap<String, RawMaterial>,
+    pub(super) raw_load: RawLoad,
     inputs: Value,
 }
 
@@ -254,7 +261,7 @@ fn numerics(cx: &Ctx, n: &RawNumerics) -> Res<Numerics> {
     Ok(Numerics {
         tol: cx.positive("numerics.tol", n.tol, "an energy in J")?,
         max_iter: count(cx, "numerics.max_iter", n.max_iter)?,
-        element_tol: cx.positive("numerics.element_tol", n.element_tol, "an energy in J")?,
+        element_tol: cx.positive("numerics.element_tol", n.element_tol, "a relative energy")?,
         element_max_iter: count(cx, "numerics.element_max_iter", n.element_max_iter)?,
         points,
         elements: count(cx, "numerics.elements", n.elements)?,
@@ -316,9 +323,9 @@ fn material(cx: &Ctx, key: &str, m: &RawMaterial) -> Res<Material> {
             "expected exactly one of elastic, concrete01, concrete02, steel01, steel02",
         );
     }
-    let named = |model: &str, r: Result<Material, String>| match r {
+    let named = |model: &str, r: Result<Material, ParamError>| match r {
         Ok(m) => Ok(m),
-        Err(e) => cx.err(format!("{key}.{model}"), e),
+        Err(e) => cx.err(format!("{key}.{model}.{}", e.key), e.message),
     };
     if let Some(p) = m.elastic {
         named("elastic", Elastic::new(p).map(Material::from))
@@ -422,19 +429,24 @@ fn protocol(
     Ok(out)
 }
 
+/// The value of a key the loading's kind needs (optional in the schema, which takes every
+/// kind's keys), or an error naming it as missing.
+fn needed(cx: &Ctx, key: &str, x: Option<f64>, what: &str) -> Res<f64> {
+    match x {
+        Some(x) => Ok(x),
+        None => cx.err(key, format!("missing; this loading needs {what}")),
+    }
+}
+
 fn loading(cx: &Ctx, i: usize, l: &RawLoad, h: f64) -> Res<Loading> {
     let key = format!("scene[{i}].load");
     let axial = |cx: &Ctx| -> Res<(f64, usize)> {
-        let a = cx.positive(
-            &format!("{key}.axial"),
-            l.axial.unwrap_or(f64::NAN),
-            "a compressive axial load in N",
-        )?;
-        let s = count(
-            cx,
-            &format!("{key}.axial_steps"),
-            l.axial_steps.unwrap_or(f64::NAN),
-        )?;
+        let k = format!("{key}.axial");
+        let what = "a compressive axial load in N";
+        let a = cx.positive(&k, needed(cx, &k, l.axial, what)?, what)?;
+        let k = format!("{key}.axial_steps");
+        let what = "the axial load's step count";
+        let s = count(cx, &k, needed(cx, &k, l.axial_steps, what)?)?;
         Ok((a, s))
     };
     match (l.tip_force, l.tip_moment, &l.drifts, &l.pulse) {
@@ -446,12 +458,10 @@ fn loading(cx: &Ctx, i: usize, l: &RawLoad, h: f64) -> Res<Loading> {
         )),
         (None, None, Some(drifts), None) => {
             let (axial, axial_steps) = axial(cx)?;
-            let increment = cx.positive(
-                &format!("{key}.increment"),
-                l.increment.unwrap_or(f64::NAN),
-                "a displacement increment in m",
-            )?;
-            let cycles = count(cx, &format!("{key}.cycles"), l.cycles.unwrap_or(f64::NAN))?;
+            let (k, what) = (format!("{key}.increment"), "a displacement increment in m");
+            let increment = cx.positive(&k, needed(cx, &k, l.increment, what)?, what)?;
+            let k = format!("{key}.cycles");
+            let cycles = count(cx, &k, needed(cx, &k, l.cycles, "a cycle count")?)?;
             Ok(Loading::Cyclic {
                 axial,
                 axial_steps,
@@ -488,12 +498,29 @@ fn loading(cx: &Ctx, i: usize, l: &RawLoad, h: f64) -> Res<Loading> {
 
 fn scene_physics(
     cx: &Ctx,
-    i: usize,
-    grid_t_end: f64,
+    (i, grid_t_end, reference): (usize, f64, ReferenceKind),
     s: &SceneOwn,
     c: &ColumnCase,
 ) -> Res<ColumnScene> {
     let loading = loading(cx, i, &s.load, c.height)?;
+    // A static scene is scored against the exact elastica, a cyclic or pulse scene against
+    // OpenSees' run: the case's `reference` must say which.
+    let wanted = match loading.kind() {
+        "static" => ReferenceKind::Exact,
+        _ => ReferenceKind::External,
+    };
+    if reference != wanted {
+        return cx.err(
+            "reference",
+            format!(
+                "`{}`, but scene[{i}] is {} ({} loading), whose reference is `{}`",
+                reference.name(),
+                loading.kind(),
+                loading.kind(),
+                wanted.name()
+            ),
+        );
+    }
     let section = match c.elastic {
         Some((ea, ei)) => {
             if !s.materials.is_empty() {
@@ -526,6 +553,8 @@ fn scene_physics(
     Ok(ColumnScene {
         section,
         loading,
+        raw_materials: s.materials.clone(),
+        raw_load: s.load.clone(),
         inputs,
     })
 }
@@ -535,12 +564,15 @@ pub fn load(file: &str, text: &str) -> Result<Case, CaseError> {
     let raw: RawCase = crate::case::parse(file, text)?;
     let (shared, own, scenes) = raw.split();
     let t_ends: Vec<f64> = scenes.iter().map(|(g, _)| g.t_end).collect();
+    let reference = shared.reference;
     Ctx { file }.assemble(
         &super::family::FAMILY,
         shared,
         |cx| case_physics(cx, &own),
         scenes,
-        |cx, i, s: &SceneOwn, c: &ColumnCase| scene_physics(cx, i, t_ends[i], s, c),
+        |cx, i, s: &SceneOwn, c: &ColumnCase| {
+            scene_physics(cx, (i, t_ends[i], reference), s, c)
+        },
     )
 }
 

@@ -124,3 +124,119 @@ fn a_step_that_never_converges_is_a_typed_failure() {
     assert_eq!(f.t, 0.1);
     assert!(out.scores.get("tip_error").is_none());
 }
+
+/// A material parameter outside its model's meaning is refused at load with the parameter's
+/// full key: Concrete02's tensile strength above `|fpc|`, a compressive strength or strain
+/// given positive, Steel01's hardening ratio outside [0, 1), Steel02's `c_r1` outside (0, 1).
+#[test]
+fn material_parameters_out_of_meaning_name_their_key() {
+    for (old, new, key) in [
+        (
+            "ft = 3.0e6, ets = 1.5e9 } }, cover",
+            "ft = 40.0e6, ets = 1.5e9 } }, cover",
+            "scene[1].materials.core.concrete02.ft",
+        ),
+        (
+            "fpc = -36.0e6, epsc0 = -0.004, fpcu = -30.0e6",
+            "fpc = 36.0e6, epsc0 = -0.004, fpcu = -30.0e6",
+            "scene[0].materials.core.concrete01.fpc",
+        ),
+        (
+            "epsc0 = -0.002, fpcu = 0.0",
+            "epsc0 = 0.002, fpcu = 0.0",
+            "scene[0].materials.cover.concrete01.epsc0",
+        ),
+        (
+            "b = 0.01 } } }\nload",
+            "b = 1.0 } } }\nload",
+            "scene[0].materials.steel.steel01.b",
+        ),
+        (
+            "c_r1 = 0.925",
+            "c_r1 = 1.5",
+            "scene[1].materials.steel.steel02.c_r1",
+        ),
+    ] {
+        let e = refused("fiber_column_cyclic", old, new);
+        assert_eq!(e.file, "cases/fiber_column_cyclic.toml");
+        assert_eq!(e.key, key, "{e}");
+    }
+    let e = refused(
+        "fiber_column_cyclic",
+        "ft = 3.0e6, ets = 1.5e9 } }, cover",
+        "ft = 40.0e6, ets = 1.5e9 } }, cover",
+    );
+    assert!(e.message.contains("at most |fpc| = 3.6e7"), "{e}");
+}
+
+/// A key the loading's kind needs and the file leaves out (the axial load of a pulse or a
+/// cyclic scene, its step count, the protocol's increment and cycles) is named as missing,
+/// not reported as a NaN value.
+#[test]
+fn a_missing_loading_key_is_named() {
+    for (name, old, new, key) in [
+        (
+            "fiber_column_dynamic",
+            "load = { axial = 750.0e3, axial_steps = 10, pulse",
+            "load = { axial_steps = 10, pulse",
+            "scene[0].load.axial",
+        ),
+        (
+            "fiber_column_cyclic",
+            "load = { axial = 750.0e3, axial_steps = 10, drifts",
+            "load = { axial_steps = 10, drifts",
+            "scene[0].load.axial",
+        ),
+        (
+            "fiber_column_cyclic",
+            "axial = 750.0e3, axial_steps = 10, drifts",
+            "axial = 750.0e3, drifts",
+            "scene[0].load.axial_steps",
+        ),
+        (
+            "fiber_column_cyclic",
+            ", cycles = 2, increment = 5.0e-4 }",
+            ", cycles = 2 }",
+            "scene[0].load.increment",
+        ),
+        (
+            "fiber_column_cyclic",
+            ", cycles = 2, increment",
+            ", increment",
+            "scene[0].load.cycles",
+        ),
+    ] {
+        let e = refused(name, old, new);
+        assert_eq!(e.key, key, "{e}");
+        assert!(e.message.starts_with("missing"), "{e}");
+        assert!(!e.message.contains("NaN"), "{e}");
+    }
+}
+
+/// The case's `reference` must be the one its scenes are scored against: `exact` for the
+/// static scenes (the elastica), `external` for the cyclic and pulse scenes (OpenSees' runs);
+/// a kind the family has not (`numerical`) is refused before the scenes are read.
+#[test]
+fn the_reference_kind_fits_the_scenes() {
+    let e = refused(
+        "fiber_column_static",
+        "reference = \"exact\"",
+        "reference = \"external\"",
+    );
+    assert_eq!(e.key, "reference", "{e}");
+    assert!(e.message.contains("scene[0] is static"), "{e}");
+    let e = refused(
+        "fiber_column_dynamic",
+        "reference = \"external\"",
+        "reference = \"exact\"",
+    );
+    assert_eq!(e.key, "reference", "{e}");
+    assert!(e.message.contains("whose reference is `external`"), "{e}");
+    let e = refused(
+        "fiber_column_cyclic",
+        "reference = \"external\"",
+        "reference = \"numerical\"",
+    );
+    assert_eq!(e.key, "reference", "{e}");
+    assert!(e.message.contains("`exact` or `external`"), "{e}");
+}

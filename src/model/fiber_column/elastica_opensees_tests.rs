@@ -13,7 +13,7 @@ use crate::problem::{self, Stepping, Want};
 fn elastica_at_least_as_accurate_as_opensees() {
     let refs = crate::cli::default_references();
     // Listed in the manifest with its hash, and carrying its own provenance.
-    let (bytes, _, _) = super::reference::read_listed(&refs, "elastica.json", "the elastica")
+    let (bytes, _, _) = super::opensees::read_listed(&refs, "elastica.json", "the elastica")
         .unwrap_or_else(|e| panic!("{e}"));
     let file: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
     for k in ["tool", "command", "accuracy_claim", "cross_check"] {

@@ -20,7 +20,9 @@
 //!
 //! The family's line in the table is `family.rs`; `case.rs` reads its case files,
 //! `run.rs` runs a static or cyclic scene and `run_dynamic.rs` the pulse, `problem.rs` scores it behind the `Problem` seam against
-//! `reference.rs`'s references (the exact ones cross-checked by `shooting.rs`).
+//! `reference.rs`'s references (the exact ones cross-checked by `shooting.rs`; the external
+//! ones, OpenSees' runs, checked by `opensees.rs` and compared with the case's model field by
+//! field by `opensees_model.rs`).
 pub mod basic;
 pub mod case;
 #[cfg(test)]
@@ -40,6 +42,10 @@ pub mod family;
 pub mod krylov;
 pub mod layout;
 pub mod material;
+pub mod opensees;
+pub mod opensees_model;
+#[cfg(test)]
+mod opensees_model_tests;
 pub mod problem;
 #[cfg(test)]
 mod pulse_tests;

@@ -19,7 +19,9 @@ use std::path::Path;
 use super::case::{ColumnCase, ColumnScene, Loading};
 use super::elastica::{elastica_tip, rollup_tip};
 use super::family::{FAMILY, table};
-use super::reference::{self as fref, CrossCheck, ExactReference, External, Provenance, Track};
+use super::opensees::{self, External};
+use super::opensees_model;
+use super::reference::{CrossCheck, ExactReference, Provenance, Track};
 use super::run::{ColumnObs, Form, Keep, RunOut, Setup};
 use super::shooting::shooting_tip;
 use crate::case::{Case, CaseError, Scene};
@@ -43,6 +45,8 @@ enum Attached {
 pub struct FiberProblem {
     case: String,
     scene: String,
+    /// The scene's place in its case file (`scene[i]` in case keys).
+    scene_index: usize,
     inputs_sha256: String,
     settings_sha256: String,
     primary_metric: String,
@@ -80,6 +84,7 @@ impl FiberProblem {
         Ok(FiberProblem {
             case: case.name.clone(),
             scene: scene.name.clone(),
+            scene_index: scene.index,
             inputs_sha256: crate::case::inputs_sha256(case, scene),
             settings_sha256: scene.settings_sha256.clone(),
             primary_metric: case.primary_metric.clone(),
@@ -128,32 +133,15 @@ impl FiberProblem {
         Ok((d(&tip), d(&shot)))
     }
 
-    /// The model the OpenSees reference must have been made of.
-    fn model_check(&self) -> fref::ModelCheck {
-        let mut m: fref::ModelCheck = vec![("H", self.setup.case.height, "column.height")];
-        match *self.loading() {
-            Loading::Cyclic { axial, .. } => m.push(("P", axial, "load.axial")),
-            Loading::Pulse {
-                axial, mass, a0, ..
-            } => {
-                m.push(("P", axial, "load.axial"));
-                m.push(("mass", mass, "load.pulse.mass"));
-                m.push(("damping.a0", a0, "load.pulse.a0"));
-            }
-            _ => {}
-        }
-        m
-    }
-
+    /// The scene's OpenSees reference, checked (`opensees.rs`) and compared with the case's
+    /// model field by field (`opensees_model.rs`).
     fn external(&self, root: &Path) -> Result<External, String> {
-        let g = &self.setup.grid;
-        fref::load_external(
-            root,
-            &self.scene,
-            g.t_end,
-            g.score_every,
-            &self.model_check(),
-        )
+        let (g, s) = (&self.setup.grid, &self.setup);
+        let same_model = |model: &serde_json::Value, settings: &serde_json::Value| {
+            let at = (self.scene_index, g.t_end);
+            opensees_model::check(&s.case, &s.scene, at.0, at.1, model, settings)
+        };
+        opensees::load_external(root, &self.scene, g.t_end, g.score_every, &same_model)
     }
 
     /// The exact track at the score times and the shooting cross-check's largest
@@ -343,8 +331,9 @@ impl Problem for FiberProblem {
         if !matches!(self.loading(), Loading::TipForce(_) | Loading::TipMoment(_)) {
             let x = self.external(root)?;
             return Ok(format!(
-                "{}: external reference (OpenSees {}), not made by mbdbench; its SHA-256, \
-                 schema, columns, score times and model check out; regenerate with: {}",
+                "{}: external reference (OpenSees {}), not made by mbdbench; the folder's \
+                 SHA-256s and generator, its schema, columns, claims, score times and whole \
+                 model check out; regenerate with: {}",
                 x.path.display(),
                 x.opensees,
                 x.regenerate
@@ -393,9 +382,10 @@ impl Problem for FiberProblem {
                 Ok(x) => (
                     true,
                     format!(
-                        "{}/{}: external OpenSees reference {}: SHA-256 as in MANIFEST.json, \
-                         schema, columns, score times and model as the case's; regenerate \
-                         with: {}",
+                        "{}/{}: external OpenSees reference {}: every file MANIFEST.json \
+                         lists (the generator too) with its SHA-256, schema, columns, claims, \
+                         score times, and every field of its model and settings as the \
+                         case's; regenerate with: {}",
                         self.case,
                         self.scene,
                         x.path.display(),

@@ -1,42 +1,61 @@
-//! Tests of the external (OpenSees) references' loader, `reference::load_external`, on a copy
-//! of the stored files: the stored `rc_cyclic_c01` loads and matches the case; each of the
-//! refusals (a changed file, a manifest without its provenance, a model that is not the
-//! case's, a score time the file does not hold) names the file and the key.
+//! Tests of the external (OpenSees) references' loader, `opensees::load_external`, on copies
+//! of the stored folder: the stored `rc_cyclic_c01` loads; the folder's checks refuse a file
+//! changed after generation (a record, the generator, its requirements, its README), a
+//! manifest without its provenance or without the generator's inputs, and a record whose
+//! generator hash is not the manifest's; the record's checks (with the manifest re-hashed, so
+//! that only they can refuse) refuse an unknown key, a repeated row, a column that is zero
+//! throughout, and a claim that is negative, huge, null or missing; each names the file and
+//! the key. The model's comparison with the case is `opensees_model_tests.rs`.
+use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
-use super::reference::{ModelCheck, load_external, opensees_dir};
+use super::opensees::{External, load_external, opensees_dir};
 
 const SCENE: &str = "rc_cyclic_c01";
+const RECORD: &str = "references/fiber_column/opensees/rc_cyclic_c01.json";
 
-/// A references root holding copies of the scene's file and the manifest.
+/// A references root holding a copy of the OpenSees folder and its `requirements.txt`.
 fn copied_root(tag: &str) -> PathBuf {
     let root = std::env::temp_dir().join(format!("mbdbench-ext-{tag}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&root);
-    let (from, to) = (
-        opensees_dir(&crate::cli::default_references()),
-        opensees_dir(&root),
-    );
+    let refs = crate::cli::default_references();
+    let (from, to) = (opensees_dir(&refs), opensees_dir(&root));
     std::fs::create_dir_all(&to).unwrap();
-    for f in [format!("{SCENE}.json"), "MANIFEST.json".to_string()] {
-        std::fs::copy(from.join(&f), to.join(&f)).unwrap();
+    for e in std::fs::read_dir(&from).unwrap() {
+        let e = e.unwrap();
+        std::fs::copy(e.path(), to.join(e.file_name())).unwrap();
     }
+    let req = "fiber_column/requirements.txt";
+    std::fs::copy(refs.join(req), root.join(req)).unwrap();
     root
 }
 
-/// The case's model values (`column.height`, `load.axial`).
-fn model(h: f64) -> ModelCheck {
-    vec![("H", h, "column.height"), ("P", 750.0e3, "load.axial")]
+/// Loads the scene at the case's grid with no model comparison (the loader's own checks).
+fn load(root: &Path, score_every: f64) -> Result<External, String> {
+    load_external(root, SCENE, 5880.0, score_every, &|_, _| Ok(()))
 }
 
-fn load(root: &Path, h: f64, score_every: f64) -> Result<super::reference::External, String> {
-    load_external(root, SCENE, 5880.0, score_every, &model(h))
-}
-
-fn edit(path: &Path, f: impl Fn(&mut serde_json::Value)) {
-    let mut v: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+fn edit(path: &Path, f: impl Fn(&mut Value)) {
+    let mut v: Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
     f(&mut v);
     std::fs::write(path, serde_json::to_vec(&v).unwrap()).unwrap();
+}
+
+/// Edits the record and lists its new hash in the manifest, as a regeneration would.
+fn tamper(root: &Path, f: impl Fn(&mut Value)) {
+    let dir = opensees_dir(root);
+    let file = dir.join(format!("{SCENE}.json"));
+    edit(&file, f);
+    let sha = crate::reference::sha256_hex(&std::fs::read(&file).unwrap());
+    edit(&dir.join("MANIFEST.json"), |m| m["sha256"][RECORD] = json!(sha));
+}
+
+/// An edit of a record.
+type Tamper = Box<dyn Fn(&mut Value)>;
+
+/// Puts the stored folder back in `root`, the copy `copied_root(tag)` made.
+fn restore(root: &Path, tag: &str) {
+    assert_eq!(copied_root(tag), root);
 }
 
 /// The stored reference loads: its track at every score time, its accuracy claim (the
@@ -44,7 +63,7 @@ fn edit(path: &Path, f: impl Fn(&mut serde_json::Value)) {
 #[test]
 fn stored_reference_loads() {
     let root = copied_root("ok");
-    let e = load(&root, 3.0, 5.0).unwrap();
+    let e = load(&root, 5.0).unwrap();
     assert_eq!(e.track.t.len(), 5880 / 5 + 1);
     let claim = e.claim["base_shear"];
     assert!(claim > 1e-5 && claim < 1e-4, "{claim}");
@@ -52,46 +71,133 @@ fn stored_reference_loads() {
     let _ = std::fs::remove_dir_all(&root);
 }
 
-/// Each refusal names its file and key: a file changed after generation (its SHA-256 no
-/// longer the manifest's), a manifest without its provenance block, a case whose height is
-/// not the model's (stale, with the command that regenerates it), a score grid the file's
-/// `t` does not hold.
+/// The folder's checks name the file and key: a score grid the record's `t` does not hold, a
+/// manifest without its provenance block, a record changed after generation, a model the
+/// caller's comparison refuses (with the command that regenerates it).
 #[test]
 fn refusals_name_file_and_key() {
     let root = copied_root("bad");
     let dir = opensees_dir(&root);
-    // A model that is not the case's.
-    let e = load(&root, 3.5, 5.0).err().unwrap();
-    assert!(
-        e.contains("stale") && e.contains("model.H") && e.contains("column.height"),
-        "{e}"
-    );
-    assert!(e.contains("generate.py"), "says how to regenerate: {e}");
-    // A score time between the file's samples.
-    let e = load(&root, 3.0, 0.5).err().unwrap();
+    let e = load(&root, 0.5).err().unwrap();
     assert!(e.contains("data.t") && e.contains("0.5"), "{e}");
-    // A manifest without provenance.
+    let stale = load_external(&root, SCENE, 5880.0, 5.0, &|_, _| Err("stale: x".into()));
+    let e = stale.err().unwrap();
+    assert!(e.contains(&format!("{SCENE}.json: stale: x")), "{e}");
+    assert!(e.contains("generate.py"), "says how to regenerate: {e}");
     edit(&dir.join("MANIFEST.json"), |m| {
         m.as_object_mut().unwrap().remove("provenance");
     });
-    let e = load(&root, 3.0, 5.0).err().unwrap();
-    assert!(
-        e.contains("MANIFEST.json") && e.contains("provenance.tool"),
-        "{e}"
-    );
-    // A file changed after generation.
-    std::fs::copy(
-        opensees_dir(&crate::cli::default_references()).join("MANIFEST.json"),
-        dir.join("MANIFEST.json"),
-    )
-    .unwrap();
+    let e = load(&root, 5.0).err().unwrap();
+    assert!(e.contains("MANIFEST.json") && e.contains("provenance.tool"), "{e}");
+    restore(&root, "bad");
     edit(&dir.join(format!("{SCENE}.json")), |f| {
-        f["data"]["base_shear"][1] = serde_json::json!(1.0);
+        f["data"]["base_shear"][1] = json!(1.0);
     });
-    let e = load(&root, 3.0, 5.0).err().unwrap();
+    let e = load(&root, 5.0).err().unwrap();
     assert!(
         e.contains(&format!("{SCENE}.json")) && e.contains("differs from MANIFEST.json"),
         "{e}"
     );
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// Every file the manifest lists is verified, not only the record: a changed generator,
+/// requirements or README is refused naming it and its manifest key; a manifest that does
+/// not list the generator's requirements, or a record whose generator hash is not the one
+/// the manifest lists, is refused too.
+#[test]
+fn the_manifest_covers_the_generator_and_its_inputs() {
+    let root = copied_root("manifest");
+    let dir = opensees_dir(&root);
+    for (file, key) in [
+        (dir.join("generate.py"), "generate.py"),
+        (root.join("fiber_column/requirements.txt"), "requirements.txt"),
+        (dir.join("README.md"), "README.md"),
+    ] {
+        let mut text = std::fs::read(&file).unwrap();
+        text.extend_from_slice(b"\n");
+        std::fs::write(&file, text).unwrap();
+        let e = load(&root, 5.0).err().unwrap();
+        assert!(e.contains(key) && e.contains("differs from MANIFEST.json"), "{e}");
+        assert!(e.contains("key `sha256.references/fiber_column/"), "{e}");
+        restore(&root, "manifest");
+    }
+    edit(&dir.join("MANIFEST.json"), |m| {
+        let files = m["sha256"].as_object_mut().unwrap();
+        files.remove("references/fiber_column/requirements.txt");
+    });
+    let e = load(&root, 5.0).err().unwrap();
+    assert!(
+        e.contains("MANIFEST.json") && e.contains("requirements.txt` is missing"),
+        "{e}"
+    );
+    restore(&root, "manifest");
+    tamper(&root, |f| f["generator"]["script_sha256"] = json!("0".repeat(64)));
+    let e = load(&root, 5.0).err().unwrap();
+    assert!(e.contains(&format!("{SCENE}.json: key `generator.script_sha256`")), "{e}");
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// The record's own checks, on copies re-hashed into the manifest: an unknown top-level key,
+/// a repeated row, a column that is zero throughout, an unknown data column, and an accuracy
+/// claim that is negative, above the sanity bound, null or missing are refused, each naming
+/// the file and the key.
+#[test]
+fn malformed_records_are_refused_by_key() {
+    let root = copied_root("record");
+    let cases: Vec<(&str, Tamper)> = vec![
+        ("unknown field `comment`", Box::new(|f| f["comment"] = json!("x"))),
+        (
+            "key `data.t` repeats t = 0 at row 1",
+            Box::new(|f| {
+                for c in f["data"].as_object_mut().unwrap().values_mut() {
+                    let first = c[0].clone();
+                    c.as_array_mut().unwrap().insert(0, first);
+                }
+            }),
+        ),
+        (
+            "key `data.base_shear` is zero at every row",
+            Box::new(|f| {
+                for x in f["data"]["base_shear"].as_array_mut().unwrap() {
+                    *x = json!(0.0);
+                }
+            }),
+        ),
+        (
+            "key `data.base_shear_2` is not a column",
+            Box::new(|f| f["data"]["base_shear_2"] = json!([0.0])),
+        ),
+        (
+            "key `half_increment.relative_to_peak.base_shear` is -1e-4",
+            Box::new(|f| f["half_increment"]["relative_to_peak"]["base_shear"] = json!(-1e-4)),
+        ),
+        (
+            "key `half_increment.relative_to_peak.top_axial` is 2e0",
+            Box::new(|f| f["half_increment"]["relative_to_peak"]["top_axial"] = json!(2.0)),
+        ),
+        (
+            "key `half_increment.relative_to_peak.top_rotation` is null",
+            Box::new(|f| f["half_increment"]["relative_to_peak"]["top_rotation"] = Value::Null),
+        ),
+        (
+            "key `half_increment.relative_to_peak.axial_force` is missing",
+            Box::new(|f| {
+                let m = f["half_increment"]["relative_to_peak"].as_object_mut().unwrap();
+                m.remove("axial_force");
+            }),
+        ),
+        (
+            "key `half_increment.peak_abs.base_shear` is 1e0",
+            Box::new(|f| f["half_increment"]["peak_abs"]["base_shear"] = json!(1.0)),
+        ),
+    ];
+    for (want, f) in cases {
+        tamper(&root, f);
+        let e = load(&root, 5.0).err().unwrap_or_else(|| panic!("accepted: {want}"));
+        assert!(e.contains(&format!("{SCENE}.json: ")), "{e}");
+        assert!(e.contains(want), "{e}\nwanted: {want}");
+        restore(&root, "record");
+    }
     let _ = std::fs::remove_dir_all(&root);
 }

@@ -177,6 +177,8 @@ pub static FAMILY: Family = Family {
         "scene.energy_scale",
     ],
     stability_quick: &["rk4", "newmark", "implicit_midpoint", "gen_alpha_i3"],
+    // Its references: `fe_exact` integrated by `mbdbench reference` (numerical).
+    references: &[crate::case::ReferenceKind::Numerical],
 };
 
 /// The formulations, in report order.

@@ -27,6 +27,8 @@ pub static FAMILY: Family = Family {
     // body, springs and initial state alone.
     settings: &[],
     stability_quick: &[],
+    // Its references: integrated by `mbdbench reference` (numerical) or the torque-free closed form (exact).
+    references: &[crate::case::ReferenceKind::Numerical, crate::case::ReferenceKind::Exact],
 };
 
 /// The metrics of rigid-body cases (cases/README.md, "Rigid-body metrics").

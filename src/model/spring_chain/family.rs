@@ -96,6 +96,8 @@ pub static FAMILY: Family = Family {
     figures: &FIGURES,
     settings: &[],
     stability_quick: &["rk4"],
+    // Its references: the chain's closed form (exact).
+    references: &[crate::case::ReferenceKind::Exact],
 };
 
 /// A monomorphised run.

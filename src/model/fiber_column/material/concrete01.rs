@@ -33,7 +33,7 @@
 //! down that line to zero stress); 0 at zero stress.
 //! Parameters: f'_c < 0, ε_c0 < 0, f'_c ≤ f_cu ≤ 0, ε_cu < ε_c0, all finite (OpenSees flips
 //! positive values to negative; we refuse them instead, so that a sign slip is loud).
-use super::{Uniaxial, check, trapezoid};
+use super::{ParamError, Uniaxial, check, trapezoid};
 
 /// Parameters of [`Concrete01`] (SI, OpenSees' names and order; compression negative).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -84,9 +84,10 @@ impl Concrete01 {
     /// assert!((stress + 27e6).abs() < 1e-6 && (tangent - 9e9).abs() < 1e-3);
     /// assert_eq!(c.set_trial_strain(0.001), (0.0, 0.0)); // no tension
     /// let err = Concrete01::new(Concrete01Params { fpc: 36e6, ..p }).unwrap_err();
-    /// assert!(err.contains("fpc"));
+    /// assert_eq!(err.key, "fpc");
+    /// assert!(err.message.contains("fpc = 3.6e7"));
     /// ```
-    pub fn new(params: Concrete01Params) -> Result<Self, String> {
+    pub fn new(params: Concrete01Params) -> Result<Self, ParamError> {
         let Concrete01Params {
             fpc,
             epsc0,

@@ -33,10 +33,11 @@
 //! section carries tension only beyond ε_pt, at most the shifted tension envelope; the
 //! unloading line starts at σ_m/2, so unloading from the envelope first drops with E_c0 to
 //! half its stress. Parameters: f'_c < 0, ε_c0 < 0, f'_c ≤ f_cu ≤ 0, ε_cu < ε_c0, 0 ≤ λ < 1,
-//! f_t ≥ 0, E_ts > 0, all finite (OpenSees flips positive compressive values; we refuse them),
-//! and ε_R > 0, i.e. λ > f_cu/(E_c0 ε_cu): OpenSees accepts ε_R ≤ 0, but then E_r changes
+//! 0 ≤ f_t ≤ |f'_c| (OpenSees takes any f_t; a tensile strength above the compressive one is
+//! no concrete), E_ts > 0, all finite (OpenSees flips positive compressive values; we refuse
+//! them), and ε_R > 0, i.e. λ > f_cu/(E_c0 ε_cu): OpenSees accepts ε_R ≤ 0, but then E_r changes
 //! sign (and divides by zero) once ε_min passes ε_R, which we refuse rather than reproduce.
-use super::{Uniaxial, check, trapezoid};
+use super::{ParamError, Uniaxial, check, trapezoid};
 
 /// Parameters of [`Concrete02`] (SI, OpenSees' names and order; compression negative).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -52,7 +53,7 @@ pub struct Concrete02Params {
     pub epscu: f64,
     /// λ, the ratio of the unloading slope at ε_cu to E_c0, 0 ≤ λ < 1.
     pub lambda: f64,
-    /// Tensile strength f_t (Pa), ≥ 0.
+    /// Tensile strength f_t (Pa), 0 ≤ f_t ≤ |f'_c|.
     pub ft: f64,
     /// Tension-softening modulus E_ts (Pa, the magnitude of the softening slope), > 0.
     pub ets: f64,
@@ -107,9 +108,9 @@ impl Concrete02 {
     /// let (stress, tangent) = c.set_trial_strain(1e-3);
     /// assert!((stress - (3e6 - 1.5e9 * (1e-3 - 3e6 / 18e9))).abs() < 1e-6);
     /// assert_eq!(tangent, -1.5e9);
-    /// assert!(Concrete02::new(Concrete02Params { ets: 0.0, ..p }).unwrap_err().contains("Ets"));
+    /// assert!(Concrete02::new(Concrete02Params { ets: 0.0, ..p }).unwrap_err().message.contains("Ets"));
     /// ```
-    pub fn new(params: Concrete02Params) -> Result<Self, String> {
+    pub fn new(params: Concrete02Params) -> Result<Self, ParamError> {
         let Concrete02Params {
             fpc,
             epsc0,
@@ -139,15 +140,27 @@ impl Concrete02 {
             "in [0, 1)",
         )?;
         check(m, "ft", ft, ft >= 0.0, ">= 0")?;
-        check(m, "Ets", ets, ets > 0.0, "positive")?;
+        // A tensile strength above the compressive one describes no concrete (typically
+        // f_t is a tenth of |f'_c|).
+        check(
+            m,
+            "ft",
+            ft,
+            ft <= -fpc,
+            &format!("at most |fpc| = {:e}", -fpc),
+        )?;
+        check(m, "ets", ets, ets > 0.0, "positive")?;
         let ec0 = fpc * 2.0 / epsc0;
         let eps_r = (fpcu - lambda * ec0 * epscu) / (ec0 * (1.0 - lambda));
         if eps_r <= 0.0 {
             let floor = fpcu / (ec0 * epscu);
-            return Err(format!(
-                "{m}: lambda = {lambda:e} must exceed fpcu/(Ec0 epscu) = {floor:e} \
-                 (Yassin's focal point must lie in tension)"
-            ));
+            return Err(ParamError {
+                key: "lambda",
+                message: format!(
+                    "{m}: lambda = {lambda:e} must exceed fpcu/(Ec0 epscu) = {floor:e} \
+                     (Yassin's focal point must lie in tension)"
+                ),
+            });
         }
         let virgin = State {
             strain: 0.0,

@@ -4,7 +4,7 @@
 //! is σ²/(2E) = E ε²/2 (E_unload = E) so that, up to the trapezoid rule's rounding, the
 //! dissipated energy is zero on every path. It has no failure mode beyond its parameter
 //! check (E finite and positive).
-use super::{Uniaxial, check, trapezoid};
+use super::{ParamError, Uniaxial, check, trapezoid};
 
 /// Parameters of [`Elastic`] (SI): `e` the Young's modulus (Pa), finite and positive.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -32,10 +32,10 @@ impl Elastic {
     ///
     /// let mut m = Elastic::new(ElasticParams { e: 200e9 }).unwrap();
     /// assert_eq!(m.set_trial_strain(1e-3), (200e6, 200e9));
-    /// assert!(Elastic::new(ElasticParams { e: -1.0 }).unwrap_err().contains("E = "));
+    /// assert!(Elastic::new(ElasticParams { e: -1.0 }).unwrap_err().message.contains("E = "));
     /// ```
-    pub fn new(params: ElasticParams) -> Result<Self, String> {
-        check("Elastic", "E", params.e, params.e > 0.0, "positive")?;
+    pub fn new(params: ElasticParams) -> Result<Self, ParamError> {
+        check("Elastic", "e", params.e, params.e > 0.0, "positive")?;
         Ok(Self {
             params,
             committed_strain: 0.0,

@@ -25,8 +25,8 @@
 //! increments, exact for the piecewise-linear branches and second-order accurate on the
 //! curved ones; [`Uniaxial::recoverable_energy`] is `σ²/(2 E_unload)` with `E_unload` named by
 //! each model. A model fails where its source does: the constructors refuse parameters outside
-//! the ranges listed on each parameter struct (and every non-finite value) with a message
-//! naming the parameter, and the models assume strains of engineering size (|ε| ≪ 1).
+//! the ranges listed on each parameter struct (and every non-finite value) with a
+//! [`ParamError`] naming the parameter (its struct field, the case file's key), and the models assume strains of engineering size (|ε| ≪ 1).
 mod concrete01;
 mod concrete02;
 mod elastic;
@@ -175,14 +175,46 @@ fn trapezoid(strain_a: f64, stress_a: f64, strain_b: f64, stress_b: f64) -> f64 
     0.5 * (stress_a + stress_b) * (strain_b - strain_a)
 }
 
-/// Checks one parameter of a constructor: refuses a non-finite value, then one for which
-/// `ok` is false, with "`model`: `name` = `value` must be `rule`".
-fn check(model: &str, name: &str, value: f64, ok: bool, rule: &str) -> Result<(), String> {
-    if !value.is_finite() {
-        Err(format!("{model}: {name} = {value} must be finite"))
-    } else if !ok {
-        Err(format!("{model}: {name} = {value:e} must be {rule}"))
-    } else {
-        Ok(())
+/// A parameter a constructor refuses: `key`, the field of the parameter struct (the case
+/// file's key, `c_r1`), and the message, which names the model and the parameter as
+/// OpenSees spells it (`Steel02: cR1 = 1.5e0 must be in (0, 1)`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamError {
+    pub key: &'static str,
+    pub message: String,
+}
+
+impl From<ParamError> for String {
+    fn from(e: ParamError) -> String {
+        e.message
     }
+}
+
+/// A parameter's name as OpenSees' manual spells it (the messages keep that spelling; the
+/// struct fields, which the case files use, are lower snake case).
+fn opensees_name(key: &'static str) -> &'static str {
+    match key {
+        "e" => "E",
+        "e0" => "E0",
+        "ets" => "Ets",
+        "r0" => "R0",
+        "c_r1" => "cR1",
+        "c_r2" => "cR2",
+        other => other,
+    }
+}
+
+/// Checks one parameter of a constructor, `key` its struct field: refuses a non-finite value,
+/// then one for which `ok` is false, with "`model`: `name` = `value` must be `rule`" (`name`
+/// OpenSees' spelling of `key`).
+fn check(model: &str, key: &'static str, value: f64, ok: bool, rule: &str) -> Result<(), ParamError> {
+    let name = opensees_name(key);
+    let message = if !value.is_finite() {
+        format!("{model}: {name} = {value} must be finite")
+    } else if !ok {
+        format!("{model}: {name} = {value:e} must be {rule}")
+    } else {
+        return Ok(());
+    };
+    Err(ParamError { key, message })
 }

@@ -303,13 +303,19 @@ fn steel02_loop_dissipates_the_area_between_its_branches() {
     );
 }
 
+/// Checks that `r` is refused with a message containing `needle`, and that the error's key
+/// is the parameter the message names (its struct field).
+fn bad(r: Result<Material, ParamError>, needle: &str) {
+    let e = r.expect_err(needle);
+    assert!(e.message.contains(needle), "{e:?} should name {needle}");
+    let named = super::opensees_name(e.key);
+    assert!(e.message.contains(&format!(" {named} = ")), "{e:?}: key {}", e.key);
+}
+
+/// Every out-of-range or non-finite parameter of the concretes is refused with its name and
+/// value, and the error's key is the parameter's struct field (the case file's key).
 #[test]
-fn constructors_refuse_bad_parameters_by_name() {
-    // Invariant: every out-of-range or non-finite parameter is refused with its name and value.
-    let bad = |r: Result<Material, String>, needle: &str| {
-        let e = r.expect_err(needle);
-        assert!(e.contains(needle), "{e:?} should name {needle}");
-    };
+fn concrete_constructors_refuse_bad_parameters_by_name() {
     let c01 = |p| Concrete01::new(p).map(Material::from);
     bad(
         c01(Concrete01Params {
@@ -405,6 +411,13 @@ fn constructors_refuse_bad_parameters_by_name() {
     );
     bad(
         c02(Concrete02Params {
+            ft: 40e6,
+            ..CORE_C02
+        }),
+        "ft = 4e7 must be at most |fpc| = 3.6e7",
+    );
+    bad(
+        c02(Concrete02Params {
             ets: 0.0,
             ..CORE_C02
         }),
@@ -416,6 +429,12 @@ fn constructors_refuse_bad_parameters_by_name() {
         ..CORE_C02
     };
     bad(c02(strong_residual), "lambda = 1e-1 must exceed");
+}
+
+/// Every out-of-range or non-finite parameter of the steels and of the elastic material is
+/// refused with its name and value, and the error's key is the parameter's struct field.
+#[test]
+fn steel_and_elastic_constructors_refuse_bad_parameters_by_name() {
     let s01 = |p| Steel01::new(p).map(Material::from);
     bad(
         s01(Steel01Params {

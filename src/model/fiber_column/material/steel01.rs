@@ -18,7 +18,7 @@
 //! within f64::EPSILON of the committed one returns the committed state. Recoverable energy:
 //! σ²/(2 E0), E_unload = E0, exact since unloading is elastic until the opposite asymptote.
 //! Parameters: f_y > 0, E0 > 0, 0 ≤ b < 1, all finite.
-use super::{Uniaxial, check, trapezoid};
+use super::{ParamError, Uniaxial, check, trapezoid};
 
 /// Parameters of [`Steel01`] (SI, OpenSees' names): yield stress, initial modulus and
 /// hardening ratio.
@@ -62,12 +62,12 @@ impl Steel01 {
     /// let (stress, tangent) = s.set_trial_strain(0.0121);
     /// assert!((stress - (420e6 + 2e9 * 0.01)).abs() < 1e-3 && tangent == 2e9);
     /// let bad = Steel01Params { fy: -420e6, e0: 200e9, b: 0.01 };
-    /// assert!(Steel01::new(bad).unwrap_err().starts_with("Steel01: fy = -4.2e8"));
+    /// assert!(Steel01::new(bad).unwrap_err().message.starts_with("Steel01: fy = -4.2e8"));
     /// ```
-    pub fn new(params: Steel01Params) -> Result<Self, String> {
+    pub fn new(params: Steel01Params) -> Result<Self, ParamError> {
         let Steel01Params { fy, e0, b } = params;
         check("Steel01", "fy", fy, fy > 0.0, "positive")?;
-        check("Steel01", "E0", e0, e0 > 0.0, "positive")?;
+        check("Steel01", "e0", e0, e0 > 0.0, "positive")?;
         check("Steel01", "b", b, (0.0..1.0).contains(&b), "in [0, 1)")?;
         let virgin = State {
             strain: 0.0,

@@ -30,7 +30,7 @@
 //! Parameters: f_y > 0, E0 > 0, 0 ≤ b < 1, R0 > 0, 0 < cR1 < 1 (so R stays positive however
 //! large ξ grows), cR2 > 0, all finite. The model is rate-free; it fails (ε_0 = ε_r, a zero
 //! division) only for parameters the constructor refuses.
-use super::{Uniaxial, check, trapezoid};
+use super::{ParamError, Uniaxial, check, trapezoid};
 
 /// Parameters of [`Steel02`] (SI, OpenSees' names and order).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -100,9 +100,9 @@ impl Steel02 {
     /// let (stress, _) = s.set_trial_strain(420e6 / 200e9);
     /// let expected = 420e6 * (0.01 + 0.99 * 2f64.powf(-1.0 / 18.0));
     /// assert!((stress - expected).abs() < 1e-3);
-    /// assert!(Steel02::new(Steel02Params { c_r1: 1.5, ..p }).unwrap_err().contains("cR1"));
+    /// assert!(Steel02::new(Steel02Params { c_r1: 1.5, ..p }).unwrap_err().message.contains("cR1"));
     /// ```
-    pub fn new(params: Steel02Params) -> Result<Self, String> {
+    pub fn new(params: Steel02Params) -> Result<Self, ParamError> {
         let Steel02Params {
             fy,
             e0,
@@ -112,17 +112,17 @@ impl Steel02 {
             c_r2,
         } = params;
         check("Steel02", "fy", fy, fy > 0.0, "positive")?;
-        check("Steel02", "E0", e0, e0 > 0.0, "positive")?;
+        check("Steel02", "e0", e0, e0 > 0.0, "positive")?;
         check("Steel02", "b", b, (0.0..1.0).contains(&b), "in [0, 1)")?;
-        check("Steel02", "R0", r0, r0 > 0.0, "positive")?;
+        check("Steel02", "r0", r0, r0 > 0.0, "positive")?;
         check(
             "Steel02",
-            "cR1",
+            "c_r1",
             c_r1,
             c_r1 > 0.0 && c_r1 < 1.0,
             "in (0, 1)",
         )?;
-        check("Steel02", "cR2", c_r2, c_r2 > 0.0, "positive")?;
+        check("Steel02", "c_r2", c_r2, c_r2 > 0.0, "positive")?;
         let eps_y = fy / e0;
         let virgin = State {
             strain: 0.0,
