@@ -1,4 +1,4 @@
-//! An expected-failure gate holds a cause, not just a kind (issue 24, item 4), through the
+//! An expected-failure gate holds a cause, not just a kind (cases/README.md, `expect`), through the
 //! binary: with the column's Newton budget cut to 3 iterations every plain-Newton run on c02
 //! fails at the first step, and the gate expecting OpenSees' cycling at step 4154 fails those
 //! rows instead of passing them.

@@ -1,5 +1,5 @@
 //! `mbdbench reference --check` recomputes and judges a stored reference by bounds of its own
-//! (issue 24, item 3): a tampered column passes no more when its file also claims a loose
+//! (never by numbers in the file it checks): a tampered column passes no more when its file also claims a loose
 //! accuracy, a tampered self-convergence track is caught, and a claim far from the
 //! recomputed one is refused, each through the binary on a copy of the stored references.
 mod common;
