@@ -127,6 +127,31 @@ pub fn check_family_inputs(family: &crate::problem::Family, case: &Case) -> Resu
     Ok(())
 }
 
+/// Sets every scene's `settings_sha256` from the case file's text (`settings_sha256s`), by
+/// the scene's position in the file.
+pub fn stamp_settings(
+    case: &mut Case,
+    model: &str,
+    file: &str,
+    text: &str,
+) -> Result<(), CaseError> {
+    let settings = settings_sha256s(file, text)?;
+    for scene in &mut case.scenes {
+        let Some(h) = settings.get(scene.index) else {
+            return Err(CaseError {
+                file: file.to_string(),
+                key: format!("scene[{}]", scene.index),
+                message: format!(
+                    "family `{model}` loaded a scene the text does not have ({} scenes)",
+                    settings.len()
+                ),
+            });
+        };
+        scene.settings_sha256 = h.clone();
+    }
+    Ok(())
+}
+
 /// Every scene's `settings_sha256`, in file order, from the case file's text: the case-level
 /// keys and the scene's own, less the presentation keys, numbers as floats.
 pub fn settings_sha256s(file: &str, text: &str) -> Result<Vec<String>, CaseError> {

@@ -348,21 +348,7 @@ pub fn load_str(file_label: &str, text: &str) -> Result<Case, CaseError> {
     };
     let mut case = (family.load)(file_label, text)?;
     hash::check_family_inputs(family, &case)?;
-    let settings = hash::settings_sha256s(file_label, text)?;
-    for scene in &mut case.scenes {
-        let Some(h) = settings.get(scene.index) else {
-            return Err(CaseError {
-                file: file_label.to_string(),
-                key: format!("scene[{}]", scene.index),
-                message: format!(
-                    "family `{}` loaded a scene the text does not have ({} scenes)",
-                    family.model,
-                    settings.len()
-                ),
-            });
-        };
-        scene.settings_sha256 = h.clone();
-    }
+    hash::stamp_settings(&mut case, family.model, file_label, text)?;
     Ok(case)
 }
 
