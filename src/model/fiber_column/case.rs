@@ -17,18 +17,22 @@
 //! they refuse; the fiber layout lies inside its outline and has fibers (`layout.rs`); a
 //! cyclic scene's `t_end` is its protocol's length in increments and every drift amplitude
 //! is a whole number of increments (so every ladder step that divides the score grid lands
-//! on the reversals). Where it fails: nothing here checks that the chosen counts converge;
-//! the case file's comments give the evidence.
+//! on the reversals). A loaded case holds nothing that grows with its counts: the protocol
+//! is kept by its amplitudes (`protocol.rs`) and the fiber layout unexpanded (a run makes
+//! the fibers), so the family's memory and work estimate (`estimate.rs`) is checked before
+//! anything large exists. Where it fails: nothing here checks that the chosen counts
+//! converge; the case file's comments give the evidence.
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
-use super::layout::{Layer, Patch, fiber_section};
+use super::layout::{Layer, Patch, SectionSpec, check_layout};
 use super::material::{
     Concrete01, Concrete01Params, Concrete02, Concrete02Params, Elastic, ElasticParams, Material,
     Steel01, Steel01Params, Steel02, Steel02Params,
 };
-use super::section::{ElasticSection, FiberSection, Section};
+use super::protocol::Protocol;
+use super::section::ElasticSection;
 use crate::case::{Case, CaseError, Ctx, Res, Scene};
 
 crate::case_schema! {
@@ -184,8 +188,7 @@ pub enum Loading {
         axial: f64,
         axial_steps: usize,
         /// The top displacement (m) at every integer `t` from 0 to `t_end`.
-        protocol: Vec<f64>,
-        increment: f64,
+        protocol: Protocol,
     },
     /// The axial load, then the ground-acceleration pulse.
     Pulse {
@@ -223,10 +226,11 @@ impl Loading {
     }
 }
 
-/// A scene's physics: the section with its materials and the loading.
+/// A scene's physics: the section with its materials (its fibers are made per run) and the
+/// loading.
 #[derive(Debug, Clone)]
 pub struct ColumnScene {
-    pub section: Section,
+    pub section: SectionSpec,
     pub loading: Loading,
     inputs: Value,
 }
@@ -338,7 +342,7 @@ fn fiber_layout(
     i: usize,
     s: &RawSection,
     materials: &BTreeMap<String, Material>,
-) -> Res<FiberSection> {
+) -> Res<SectionSpec> {
     let pick = |key: String, name: &str| -> Res<Material> {
         match materials.get(name) {
             Some(m) => Ok(*m),
@@ -376,24 +380,29 @@ fn fiber_layout(
         });
     }
     let (depth, width) = (s.depth.unwrap_or(0.0), s.width.unwrap_or(0.0));
-    fiber_section(depth, width, &patches, &layers).or_else(|e| cx.err("section", e))
+    check_layout(depth, width, &patches, &layers).or_else(|e| cx.err("section", e))?;
+    Ok(SectionSpec::Fiber {
+        depth,
+        width,
+        patches,
+        layers,
+    })
 }
 
-/// The protocol's top displacement at every integer `t`: `cycles` full cycles
-/// `0 -> +d -> -d -> 0` of each amplitude `d = drift H`, `increment` per unit of `t`.
+/// The protocol of `cycles` full cycles `0 -> +d -> -d -> 0` of each amplitude `d = drift H`,
+/// `increment` per unit of `t`, held by its amplitudes in increments (nothing is expanded).
 fn protocol(
     cx: &Ctx,
     key: &str,
     drifts: &[f64],
-    cycles: usize,
+    cycles: u64,
     increment: f64,
     h: f64,
-) -> Res<Vec<f64>> {
+) -> Res<Protocol> {
     if drifts.is_empty() {
         return cx.err(format!("{key}.drifts"), "empty; expected drift ratios");
     }
-    let mut out = vec![0.0];
-    let mut u: i64 = 0;
+    let mut amplitudes = Vec::with_capacity(drifts.len());
     for (j, &d) in drifts.iter().enumerate() {
         let k = format!("{key}.drifts[{j}]");
         let d = cx.positive(&k, d, "a drift ratio")?;
@@ -407,17 +416,24 @@ fn protocol(
                 ),
             );
         }
-        let a = n.round() as i64;
-        for _ in 0..cycles {
-            for target in [a, -a, 0] {
-                while u != target {
-                    u += (target - u).signum();
-                    out.push(u as f64 * increment);
-                }
-            }
+        if n.round() > super::protocol::MAX_INCREMENTS as f64 {
+            return cx.err(
+                k,
+                format!(
+                    "{d} H = {:e} m is {n:e} increments of {increment} m, more than a \
+                     protocol can hold (2^53)",
+                    d * h
+                ),
+            );
         }
+        amplitudes.push(n.round() as u64);
     }
-    Ok(out)
+    Protocol::new(amplitudes, cycles, increment).or_else(|e| {
+        cx.err(
+            key,
+            format!("drifts, cycles and increment: {e}; expected fewer or smaller cycles"),
+        )
+    })
 }
 
 fn loading(cx: &Ctx, i: usize, l: &RawLoad, h: f64) -> Res<Loading> {
@@ -449,12 +465,11 @@ fn loading(cx: &Ctx, i: usize, l: &RawLoad, h: f64) -> Res<Loading> {
                 l.increment.unwrap_or(f64::NAN),
                 "a displacement increment in m",
             )?;
-            let cycles = count(cx, &format!("{key}.cycles"), l.cycles.unwrap_or(f64::NAN))?;
+            let cycles = cx.count(&format!("{key}.cycles"), l.cycles.unwrap_or(f64::NAN))?;
             Ok(Loading::Cyclic {
                 axial,
                 axial_steps,
                 protocol: protocol(cx, &key, drifts, cycles, increment, h)?,
-                increment,
             })
         }
         (None, None, None, Some(p)) => {
@@ -500,7 +515,9 @@ fn scene_physics(
                     "an elastic section takes no materials",
                 );
             }
-            Section::Elastic(ElasticSection::new(ea, ei, ei).or_else(|e| cx.err("section", e))?)
+            SectionSpec::Elastic(
+                ElasticSection::new(ea, ei, ei).or_else(|e| cx.err("section", e))?,
+            )
         }
         None => {
             let mut materials = BTreeMap::new();
@@ -508,15 +525,18 @@ fn scene_physics(
                 let k = format!("scene[{i}].materials.{name}");
                 materials.insert(name.clone(), material(cx, &k, m)?);
             }
-            Section::Fiber(fiber_layout(cx, i, &c.raw_section, &materials)?)
+            fiber_layout(cx, i, &c.raw_section, &materials)?
         }
     };
     if let Loading::Cyclic { protocol, .. } = &loading {
-        let n = (protocol.len() - 1) as f64;
+        let n = protocol.len() as f64;
         if grid_t_end != n {
             return cx.err(
                 format!("scene[{i}].t_end"),
-                format!("{grid_t_end}; the protocol has {n} increments, so t_end = {n}"),
+                format!(
+                    "{grid_t_end}; the protocol of scene[{i}].load (drifts, cycles, increment) \
+                     has {n} increments, so t_end = {n}"
+                ),
             );
         }
     }

@@ -18,7 +18,8 @@
 //! RC column (cyclic, and under the ground-acceleration pulse with Newmark's rule), and
 //! `dynamic_tests.rs` the four schemes' pulse runs, energy balances and orders.
 //!
-//! The family's line in the table is `family.rs`; `case.rs` reads its case files,
+//! The family's line in the table is `family.rs`; `case.rs` reads its case files (a cyclic
+//! scene's displacement protocol kept by its amplitudes, `protocol.rs`),
 //! `run.rs` runs a static or cyclic scene and `run_dynamic.rs` the pulse, `problem.rs` scores it behind the `Problem` seam against
 //! `reference.rs`'s references (the exact ones cross-checked by `shooting.rs`).
 pub mod basic;
@@ -41,6 +42,7 @@ pub mod krylov;
 pub mod layout;
 pub mod material;
 pub mod problem;
+pub mod protocol;
 #[cfg(test)]
 mod pulse_tests;
 pub mod quadrature;

@@ -108,7 +108,7 @@ pub fn build<C: RotationChart>(s: &Setup, form: Form) -> Result<Column<C>, Strin
         Form::DispBased(k) => (k, false),
     };
     let h = s.case.height / count as f64;
-    let section = &s.scene.section;
+    let section = &s.scene.section.build()?;
     let mut els = Vec::with_capacity(count);
     for _ in 0..count {
         els.push(if force {
@@ -276,18 +276,14 @@ pub fn run_static<C: RotationChart>(
     let (load_dof, value) = match s.scene.loading {
         Loading::TipForce(v) => (Some(col.top_dof(0)), v),
         Loading::TipMoment(v) => (Some(col.top_dof(4)), v),
-        Loading::Cyclic {
-            ref protocol,
-            increment: _,
-            ..
-        } => {
-            let k = dt.round() as usize;
+        Loading::Cyclic { ref protocol, .. } => {
+            let k = dt.round() as u64;
             if (dt - dt.round()).abs() > 1e-9 || k == 0 {
                 return Err(format!(
                     "the step {dt} is not a whole number of protocol increments"
                 ));
             }
-            if let Some(i) = reversals(protocol).into_iter().find(|i| i % k != 0) {
+            if let Some(i) = protocol.skipped_reversal(k) {
                 return Err(format!(
                     "the step {dt} skips the protocol's reversal at t = {i}; a step must divide \
                      every protocol segment"
@@ -315,7 +311,7 @@ pub fn run_static<C: RotationChart>(
         let prescribed = match &s.scene.loading {
             Loading::Cyclic { protocol, .. } => Some(Prescribed {
                 dof: col.top_dof(0),
-                value: protocol[(t.round() as usize).min(protocol.len() - 1)],
+                value: protocol.at(t.round() as u64),
             }),
             _ => None,
         };
@@ -374,16 +370,4 @@ pub fn run_static<C: RotationChart>(
     out.samples = log.samples;
     out.peak_load = log.peak_load;
     Ok(out)
-}
-
-/// The indices of a protocol's reversals and returns to zero (segment ends).
-fn reversals(protocol: &[f64]) -> Vec<usize> {
-    let mut out = vec![];
-    for i in 1..protocol.len().saturating_sub(1) {
-        let (a, b) = (protocol[i] - protocol[i - 1], protocol[i + 1] - protocol[i]);
-        if a * b <= 0.0 || protocol[i] == 0.0 {
-            out.push(i);
-        }
-    }
-    out
 }
