@@ -51,8 +51,9 @@ pub mod ladder;
 mod schema;
 
 pub use budget::{
-    DEFAULT_ADVISE_MAX_ENERGY_DRIFT, DEFAULT_MAX_ADAPTIVE_RHS_EVALS, DEFAULT_MAX_RHS_EVALS,
-    DEFAULT_MAX_STEPS, MAX_SAMPLES, over_sample_budget,
+    DEFAULT_ADVISE_MAX_ENERGY_DRIFT, DEFAULT_MAX_ADAPTIVE_RHS_EVALS, DEFAULT_MAX_MEMORY_MIB,
+    DEFAULT_MAX_RHS_EVALS, DEFAULT_MAX_STEPS, DEFAULT_MAX_WORK, Estimate, HARD_CAPS, MAX_SAMPLES,
+    OdeCosts, hard_cap, ode_estimate, over_sample_budget,
 };
 pub use gate::{Bound, Gate, GateWhere, RawGate};
 pub use hash::{canonical_json, inputs_sha256, inputs_value};
@@ -210,6 +211,11 @@ pub struct Case {
     pub max_rhs_evals: u64,
     /// RHS-evaluation budget of an adaptive run (default `DEFAULT_MAX_ADAPTIVE_RHS_EVALS`).
     pub max_adaptive_rhs_evals: u64,
+    /// The memory (MiB) one run may hold by its family's estimate (default
+    /// `DEFAULT_MAX_MEMORY_MIB`).
+    pub max_memory_mib: u64,
+    /// The work units one run may need by its family's estimate (default `DEFAULT_MAX_WORK`).
+    pub max_work: u64,
     /// The recommendation's target errors in the primary metric (None: `advise`'s defaults).
     pub advise_targets: Option<Vec<f64>>,
     /// Above this relative energy drift a variant is listed to avoid (default 1e-3).
@@ -268,6 +274,15 @@ impl Scene {
         if quick { &self.quick } else { &self.ladders }
     }
 
+    /// The step of one order class that takes the most steps in either tier, with its key
+    /// path (`ladders.quick.order1[0]`); None when neither tier has the class.
+    pub fn finest(&self, class: OrderClass) -> Option<(String, FixedStep)> {
+        [&self.ladders, &self.quick]
+            .into_iter()
+            .filter_map(|l| l.finest(class))
+            .max_by_key(|(_, s)| s.steps)
+    }
+
     /// The family's data of the scene, if it is a `T`.
     pub fn physics<T: Payload>(&self) -> Option<&T> {
         self.physics.get()
@@ -308,7 +323,10 @@ impl Case {
 // ---------------------------------------------------------------------------------------
 // Loading
 
-/// Loads one case from its text; `file_label` names it in errors (`cases/<name>.toml`).
+/// Loads one case from its text; `file_label` names it in errors (`cases/<name>.toml`). Every
+/// scene's estimate (`problem::Family::estimate`) is checked against the case's budgets
+/// (`budget::check`): a case whose run would pass one is refused here, before anything that
+/// grows with its numbers exists.
 pub fn load_str(file_label: &str, text: &str) -> Result<Case, CaseError> {
     /// The one key read before the family's schema: which family parses the file.
     #[derive(Deserialize)]
@@ -332,7 +350,11 @@ pub fn load_str(file_label: &str, text: &str) -> Result<Case, CaseError> {
             ),
         });
     };
-    (family.load)(file_label, text)
+    let case = (family.load)(file_label, text)?;
+    for scene in &case.scenes {
+        budget::check(&case, scene, &(family.estimate)(&case, scene))?;
+    }
+    Ok(case)
 }
 
 /// Parses `text` into a family's raw (serde) case, errors with key paths.
@@ -482,6 +504,23 @@ impl Ctx<'_> {
         }
     }
 
+    /// A budget key: a count up to its hard cap (`budget::HARD_CAPS`), or `default` when
+    /// absent.
+    fn budget_key(&self, key: &str, raw: Option<f64>, default: u64) -> Res<u64> {
+        let Some(x) = raw else {
+            return Ok(default);
+        };
+        let n = self.count(key, x)?;
+        let cap = hard_cap(key);
+        if n > cap {
+            return self.err(
+                key,
+                format!("{n} is above its hard cap {cap} (cases/README.md, \"Budgets\")"),
+            );
+        }
+        Ok(n)
+    }
+
     pub fn name(&self, key: &str, s: &str, allow: impl Fn(char) -> bool, what: &str) -> Res<()> {
         if !s.is_empty() && s.chars().all(allow) {
             Ok(())
@@ -526,18 +565,17 @@ impl Ctx<'_> {
             );
         }
         let energy_scale = self.positive("energy_scale", raw.energy_scale, "an energy in J")?;
-        let max_steps = match raw.max_steps {
-            Some(x) => self.count("max_steps", x)?,
-            None => DEFAULT_MAX_STEPS,
-        };
-        let max_rhs_evals = match raw.max_rhs_evals {
-            Some(x) => self.count("max_rhs_evals", x)?,
-            None => DEFAULT_MAX_RHS_EVALS,
-        };
-        let max_adaptive_rhs_evals = match raw.max_adaptive_rhs_evals {
-            Some(x) => self.count("max_adaptive_rhs_evals", x)?,
-            None => DEFAULT_MAX_ADAPTIVE_RHS_EVALS,
-        };
+        let max_steps = self.budget_key("max_steps", raw.max_steps, DEFAULT_MAX_STEPS)?;
+        let max_rhs_evals =
+            self.budget_key("max_rhs_evals", raw.max_rhs_evals, DEFAULT_MAX_RHS_EVALS)?;
+        let max_adaptive_rhs_evals = self.budget_key(
+            "max_adaptive_rhs_evals",
+            raw.max_adaptive_rhs_evals,
+            DEFAULT_MAX_ADAPTIVE_RHS_EVALS,
+        )?;
+        let max_memory_mib =
+            self.budget_key("max_memory_mib", raw.max_memory_mib, DEFAULT_MAX_MEMORY_MIB)?;
+        let max_work = self.budget_key("max_work", raw.max_work, DEFAULT_MAX_WORK)?;
         let advise_targets = match &raw.advise_targets {
             None => None,
             Some(t) if t.is_empty() => {
@@ -615,6 +653,8 @@ impl Ctx<'_> {
             max_steps,
             max_rhs_evals,
             max_adaptive_rhs_evals,
+            max_memory_mib,
+            max_work,
             advise_targets,
             advise_max_energy_drift,
             scenes: out,

@@ -218,6 +218,13 @@ pub struct Family {
     pub load: fn(&str, &str) -> Result<Case, CaseError>,
     /// The family's physics of a scene in the physics hash (`case::hash`).
     pub inputs: fn(&Case, &Scene) -> serde_json::Map<String, serde_json::Value>,
+    /// What one run of a scene needs (memory, steps, work), estimated from the loaded case's
+    /// numbers before anything that grows with them exists: `case::load_str` checks it
+    /// against the case's budgets for every scene and refuses the case above one, naming
+    /// the key (cases/README.md, "Budgets"). Required, so no family skips it; for it to come before
+    /// any large allocation, a family's `load` keeps only what the file says (a count, not
+    /// what it counts) and `compile` and the runs build the rest.
+    pub estimate: fn(&Case, &Scene) -> crate::case::Estimate,
     /// Compiles one scene of a validated case.
     pub compile: Compile,
     /// The family's figures in the report.

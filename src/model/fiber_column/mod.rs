@@ -21,7 +21,8 @@
 //! The family's line in the table is `family.rs`; `case.rs` reads its case files (a cyclic
 //! scene's displacement protocol kept by its amplitudes, `protocol.rs`),
 //! `run.rs` runs a static or cyclic scene and `run_dynamic.rs` the pulse, `problem.rs` scores it behind the `Problem` seam against
-//! `reference.rs`'s references (the exact ones cross-checked by `shooting.rs`).
+//! `reference.rs`'s references (the exact ones cross-checked by `shooting.rs`); `estimate.rs`
+//! says what a run of a scene needs (its budgets).
 pub mod basic;
 pub mod case;
 #[cfg(test)]
@@ -37,6 +38,7 @@ mod dynamic_tests;
 pub mod elastica;
 #[cfg(test)]
 mod elastica_opensees_tests;
+pub mod estimate;
 pub mod family;
 pub mod krylov;
 pub mod layout;
