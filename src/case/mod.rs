@@ -62,6 +62,13 @@ pub use schema::{RawGrid, RawShared, RawStability};
 
 /// The only schema version this loader reads.
 pub const SCHEMA: i64 = 1;
+
+/// The shortest and longest length (m) that sets a model's size ([`Ctx::length`]: a
+/// column's height, a section's outline, a beam's length; cases/README.md, "Conventions"):
+/// outside, the squares and cubes the models form leave the floating-point range
+/// (`height = 1.0e300` made elements of infinite length).
+pub const MIN_LENGTH: f64 = 1e-6;
+pub const MAX_LENGTH: f64 = 1e6;
 /// The catalogue files compiled into the binary, sorted by name.
 const EMBEDDED: [(&str, &str); 8] = [
     (
@@ -486,6 +493,21 @@ impl Ctx<'_> {
         } else {
             self.err(key, format!("{x} is not positive; expected {what} > 0"))
         }
+    }
+
+    /// A length that sets a model's size: finite, from [`MIN_LENGTH`] to [`MAX_LENGTH`] m.
+    pub fn length(&self, key: &str, x: f64, what: &str) -> Res<f64> {
+        let x = self.positive(key, x, what)?;
+        if !(MIN_LENGTH..=MAX_LENGTH).contains(&x) {
+            return self.err(
+                key,
+                format!(
+                    "{x:e} m; expected {what} from {MIN_LENGTH} to {MAX_LENGTH} m \
+                     (cases/README.md, \"Conventions\": lengths)"
+                ),
+            );
+        }
+        Ok(x)
     }
 
     pub fn vec3(&self, key: &str, a: [f64; 3]) -> Res<Vector3<f64>> {

@@ -277,8 +277,8 @@ fn case_physics(cx: &Ctx, own: &CaseOwn) -> Res<ColumnCase> {
             cx.positive("section.elastic.ei", e.ei, "a bending stiffness in N m^2")?,
         )),
         (None, Some(d), Some(w)) => {
-            cx.positive("section.depth", d, "a length in m")?;
-            cx.positive("section.width", w, "a length in m")?;
+            cx.length("section.depth", d, "a depth")?;
+            cx.length("section.width", w, "a width")?;
             None
         }
         _ => {
@@ -296,7 +296,7 @@ fn case_physics(cx: &Ctx, own: &CaseOwn) -> Res<ColumnCase> {
     });
     Ok(ColumnCase {
         numerics: numerics(cx, &own.numerics)?,
-        height: cx.positive("column.height", own.column.height, "a length in m")?,
+        height: cx.length("column.height", own.column.height, "a height")?,
         gj: cx.positive("column.gj", own.column.gj, "a torsional stiffness in N m^2")?,
         elastic,
         raw_section: own.section.clone(),

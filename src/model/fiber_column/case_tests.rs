@@ -124,3 +124,17 @@ fn a_step_that_never_converges_is_a_typed_failure() {
     assert_eq!(f.t, 0.1);
     assert!(out.scores.get("tip_error").is_none());
 }
+
+/// A length outside 1e-6 to 1e6 m (the height of `1e300` that made elements of infinite
+/// length, and a cyclic protocol of 5e300 increments) is refused naming its key.
+#[test]
+fn non_physical_lengths_are_refused() {
+    let e = refused("fiber_column_static", "height = 1.0\n", "height = 1.0e300\n");
+    assert_eq!(e.key, "column.height", "{e}");
+    assert!(e.message.contains("1000000"), "{e}");
+    let e = refused("fiber_column_cyclic", "height = 3.0\n", "height = 1.0e300\n");
+    assert_eq!(e.key, "column.height", "{e}");
+    let e = refused("fiber_column_cyclic", "depth = 0.5\n", "depth = 1.0e-9\n");
+    assert_eq!(e.key, "section.depth", "{e}");
+    assert!(edited("fiber_column_static", "height = 1.0\n", "height = 1.0e6\n").is_ok());
+}

@@ -225,7 +225,7 @@ fn scene(cx: &Ctx, i: usize, s: &SceneOwn, case_scale: f64) -> Res<BeamScene> {
     let k = |name: &str| format!("scene[{i}].{name}");
     let b = &s.beam;
     let beam = Beam {
-        l: cx.positive(&k("beam.length"), b.length, "a length in m")?,
+        l: cx.length(&k("beam.length"), b.length, "a beam length")?,
         ea: cx.positive(&k("beam.ea"), b.ea, "an axial stiffness in N")?,
         ei: cx.positive(&k("beam.ei"), b.ei, "a bending stiffness in N m^2")?,
         rho_a: cx.positive(&k("beam.rho_a"), b.rho_a, "a mass per length in kg/m")?,
