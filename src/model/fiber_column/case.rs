@@ -247,6 +247,27 @@ fn count(cx: &Ctx, key: &str, x: f64) -> Res<usize> {
     Ok(cx.count(key, x)? as usize)
 }
 
+/// The most Newton iterations of a step and element iterations of a state determination a
+/// case may allow (`numerics.max_iter`, `element_max_iter`; the catalogue's take 20 to 50):
+/// a limit of 1e9 with a tolerance no step meets ran for hours. The run's budgets bound the
+/// iterations of a whole run (`meter.rs`).
+pub const MAX_ITER_CAP: u64 = 1000;
+
+/// An iteration limit: a count up to [`MAX_ITER_CAP`].
+fn iteration_limit(cx: &Ctx, key: &str, x: f64) -> Res<usize> {
+    let n = cx.count(key, x)?;
+    if n > MAX_ITER_CAP {
+        return cx.err(
+            key,
+            format!(
+                "{n} is above its hard cap {MAX_ITER_CAP} (cases/README.md, \"Fiber-column \
+                 keys\")"
+            ),
+        );
+    }
+    Ok(n as usize)
+}
+
 fn numerics(cx: &Ctx, n: &RawNumerics) -> Res<Numerics> {
     let points = count(cx, "numerics.points", n.points)?;
     if !(3..=10).contains(&points) {
@@ -257,9 +278,9 @@ fn numerics(cx: &Ctx, n: &RawNumerics) -> Res<Numerics> {
     }
     Ok(Numerics {
         tol: cx.positive("numerics.tol", n.tol, "an energy in J")?,
-        max_iter: count(cx, "numerics.max_iter", n.max_iter)?,
+        max_iter: iteration_limit(cx, "numerics.max_iter", n.max_iter)?,
         element_tol: cx.positive("numerics.element_tol", n.element_tol, "an energy in J")?,
-        element_max_iter: count(cx, "numerics.element_max_iter", n.element_max_iter)?,
+        element_max_iter: iteration_limit(cx, "numerics.element_max_iter", n.element_max_iter)?,
         points,
         elements: count(cx, "numerics.elements", n.elements)?,
         fine_elements: n

@@ -126,12 +126,7 @@ pub fn estimate(case: &Case, scene: &Scene) -> Estimate {
     } else {
         fiber_key
     };
-    let prelude = match s.loading {
-        Loading::Cyclic { axial_steps, .. } | Loading::Pulse { axial_steps, .. } => {
-            axial_steps as f64
-        }
-        _ => 0.0,
-    };
+    let prelude = super::run::prelude_steps(&s.loading) as f64;
     let (ladder_key, ladder_steps) = OrderClass::ALL
         .into_iter()
         .filter_map(|class| scene.finest(class))

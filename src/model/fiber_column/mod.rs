@@ -22,7 +22,7 @@
 //! scene's displacement protocol kept by its amplitudes, `protocol.rs`),
 //! `run.rs` runs a static or cyclic scene and `run_dynamic.rs` the pulse, `problem.rs` scores it behind the `Problem` seam against
 //! `reference.rs`'s references (the exact ones cross-checked by `shooting.rs`); `estimate.rs`
-//! says what a run of a scene needs (its budgets).
+//! says what a run of a scene needs (its budgets) and `meter.rs` holds a run to them.
 pub mod basic;
 pub mod case;
 #[cfg(test)]
@@ -43,6 +43,7 @@ pub mod family;
 pub mod krylov;
 pub mod layout;
 pub mod material;
+pub mod meter;
 pub mod problem;
 pub mod protocol;
 #[cfg(test)]

@@ -21,13 +21,17 @@
 //!
 //! Where it fails: a load step past the column's limit point (load control), an element
 //! that does not converge even with its increment cut 64 times, or a Newton iteration
-//! limit: each ends the run with a typed `newton_failure` at the step's `t`.
+//! limit: each ends the run with a typed `newton_failure` at the step's `t`; iterations past
+//! the run's budgets (`max_rhs_evals`, `max_work`: `meter.rs`) end it as `work_limit`.
 use nalgebra::DVector;
 
 use super::basic::{Basic, DispBased, ForceBased};
 use super::case::{ColumnCase, ColumnScene, Loading};
 use super::chart::RotationChart;
 use super::column::{Algorithm, Column, NewtonFailure, Prescribed, StepCount};
+use super::estimate::Mesh;
+use super::meter::Meter;
+use super::section::Section;
 use crate::case::steps_dividing;
 use crate::integrate::{Failure, FailureKind, Stats};
 use crate::run::Grid;
@@ -38,7 +42,11 @@ pub struct Setup {
     pub case: ColumnCase,
     pub scene: ColumnScene,
     pub grid: Grid,
+    /// The case's budgets: the steps (the prelude's included), the state determinations and
+    /// element iterations, the work units (`meter.rs`).
     pub max_steps: u64,
+    pub max_rhs_evals: u64,
+    pub max_work: u64,
 }
 
 /// One observation of the column (SI units; energies in J).
@@ -124,7 +132,29 @@ pub fn build<C: RotationChart>(s: &Setup, form: Form) -> Result<Column<C>, Strin
             Basic::Disp(DispBased::new(h, s.case.gj, section, n.points)?)
         });
     }
-    Column::new(s.case.height, els)
+    let mut col = Column::new(s.case.height, els)?;
+    let fibers = match section {
+        Section::Fiber(f) => f.fibers().len() as f64,
+        Section::Elastic(_) => 1.0,
+    };
+    let mesh = Mesh {
+        count: count as f64,
+        points: n.points as f64,
+        fibers,
+        force,
+    };
+    col.set_meter(Meter::new(s.max_rhs_evals, s.max_work, &mesh));
+    Ok(col)
+}
+
+/// The axial prelude's load steps of a scene (0 without an axial load).
+pub fn prelude_steps(loading: &Loading) -> u64 {
+    match *loading {
+        Loading::Cyclic { axial_steps, .. } | Loading::Pulse { axial_steps, .. } => {
+            axial_steps as u64
+        }
+        _ => 0,
+    }
 }
 
 /// The axial prelude of a scene with an axial load (in its load steps, load control, plain
@@ -174,17 +204,24 @@ pub(super) fn steps(s: &Setup, dt: f64) -> Result<(u64, u64, u64), String> {
     let per_score = steps_dividing(g.score_every, dt).ok_or_else(|| {
         format!("the step {dt} does not divide score_every = {}", g.score_every)
     })?;
-    if n > s.max_steps {
+    let prelude = prelude_steps(&s.scene.loading);
+    if n.saturating_add(prelude) > s.max_steps {
         return Err(format!(
-            "{n} steps are over the case's max_steps = {}",
+            "{n} steps after {prelude} prelude steps are over the case's max_steps = {}",
             s.max_steps
         ));
     }
     Ok((n, per_sample, per_score))
 }
 
+/// The typed failure of a step: `work_limit` when the run's budget stopped it, else
+/// `newton_failure`.
 pub(super) fn failure(t: f64, e: NewtonFailure) -> Failure {
-    Failure::new(FailureKind::NewtonFailure, t, e.to_string())
+    let kind = match e {
+        NewtonFailure::WorkLimit(_) => FailureKind::WorkLimit,
+        _ => FailureKind::NewtonFailure,
+    };
+    Failure::new(kind, t, e.to_string())
 }
 
 /// The top's position at a step: displacement across and along the axis (m), turn (rad).
