@@ -248,6 +248,23 @@ pub fn ode_estimate(case: &Case, scene: &Scene, c: &OdeCosts) -> Estimate {
     e
 }
 
+/// Why a run of `scene` at the fixed step `dt` over `t_end` would pass its case's step
+/// budget (the family's prelude steps included), or None. The CLI refuses such a `--dt` or
+/// `--t-end` before the run with the same exit status in every family (2: the request
+/// cannot be run; before, the beam and the rigid body started the run and failed it at
+/// `t = 0` with exit 1, the fiber column refused it with exit 2).
+pub fn over_step_budget(case: &Case, scene: &Scene, t_end: f64, dt: f64) -> Option<String> {
+    let n = super::steps_dividing(t_end, dt)?;
+    let prelude = (crate::problem::family_of(case).estimate)(case, scene).prelude_steps;
+    (n.saturating_add(prelude) > case.max_steps).then(|| {
+        format!(
+            "needs {n} steps over t_end = {t_end} s ({prelude} more before t = 0), more than \
+             max_steps = {} of case `{}` (cases/README.md, \"Budgets\")",
+            case.max_steps, case.name
+        )
+    })
+}
+
 /// Checks one scene's estimate against its case's budgets: the first budget it passes is an
 /// error naming the file and the estimate's key for that measure, with the budget key that
 /// would have to be raised (and its hard cap).

@@ -1,6 +1,8 @@
 //! `mbdbench trajectory`: one run of one variant at one step or tolerance, its samples
 //! written as named columns to one JSON file (docs/schemas.md, "Trajectory files"); a typed failure
-//! keeps the samples up to it and exits 1, bad input exits 2 and writes nothing.
+//! keeps the samples up to it and exits 1, bad input exits 2 and writes nothing (a `--dt` or
+//! `--t-end` whose run would take more than the case's `max_steps` is bad input in every
+//! family).
 use super::*;
 
 pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
@@ -79,6 +81,13 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
             "--dt {value}: does not divide score_every = {} (cases/README.md, \"Conventions\")",
             p.score_every()
         ));
+    }
+    if !v.info.adaptive
+        && let Some(c) = cases.iter().find(|c| c.name == a.case)
+        && let Some(s) = c.scene(&a.scene)
+        && let Some(why) = case::budget::over_step_budget(c, s, p.t_end(), value)
+    {
+        return Err(format!("--dt {value}: {why}"));
     }
     let out = p.run(v, stepping, Want::Trajectory)?;
     let mut doc = serde_json::Map::new();
