@@ -3,7 +3,8 @@
 //! (exit 2, naming the file and the key) before anything large is allocated; a budget key
 //! above its hard cap is refused, one raised within it lets the case load; a runaway Newton
 //! iteration ends as a typed `work_limit` naming the key; a `--dt` too small for the step
-//! budget exits 2 and writes nothing in every model family.
+//! budget exits 2 and writes nothing in every model family; a beam reference whose
+//! provenance names another mesh than its case's is refused by `reference --check`.
 //!
 //! Each command runs under a hang guard (killed after 60 s: a guard against a regression
 //! that runs for hours, not a timing assertion) with its address space capped, so a
@@ -253,4 +254,49 @@ fn a_too_small_step_is_refused_alike_in_every_family() {
         assert!(err.contains("more than max_steps = 100000000"), "{err}");
         assert!(!out.exists(), "{}: wrote {}", run[1], out.display());
     }
+}
+
+/// Copies the folder `from` to `to`, recursively.
+fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let p = entry.unwrap().path();
+        let target = to.join(p.file_name().unwrap());
+        if p.is_dir() {
+            copy_tree(&p, &target);
+        } else {
+            std::fs::copy(&p, &target).unwrap();
+        }
+    }
+}
+
+/// `reference --check` of a beam reference whose provenance names another mesh than the
+/// case's (10,000 elements: the recomputation would have held 21 GB and aborted) is refused
+/// before any run, exit 2, naming the file.
+#[test]
+fn a_reference_naming_another_mesh_is_refused() {
+    let dir = common::temp_dir("budget-reference");
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("references");
+    copy_tree(&root, &dir);
+    let file = dir.join("flexible_beam").join("spinup_w4.json");
+    let mut doc: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&file).unwrap()).unwrap();
+    doc["provenance"]["elements"] = serde_json::json!(10000);
+    std::fs::write(&file, serde_json::to_vec(&doc).unwrap()).unwrap();
+    let (code, err) = run_guarded(&[
+        "reference",
+        "--check",
+        "--case",
+        "flexible_beam",
+        "--scene",
+        "spinup_w4",
+        "--references",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("spinup_w4.json") && err.contains("10000 elements"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

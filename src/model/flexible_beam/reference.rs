@@ -13,7 +13,8 @@
 //! (`family::self_convergence`), the floor of that formulation's `tip_time_error_max`.
 //! `reference --check` recomputes the run at twice the step (half the work) and passes when
 //! it lies within the claim plus three time estimates (the coarser run's own time error is
-//! four times the stored run's). Where it fails: a claim is only as good as the estimates'
+//! four times the stored run's); a file whose provenance names another mesh or step than the
+//! case's is refused before any run. Where it fails: a claim is only as good as the estimates'
 //! asymptotic regime; the note of the issue that built it shows the mesh ladder.
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -316,7 +317,20 @@ pub fn check(p: &BeamProblem, root: &Path) -> Result<(bool, String), String> {
         reference::load_as(root, p.case(), p.scene(), p.inputs_sha256())
             .map_err(|e| e.to_string())?;
     let s = &p.setup;
-    let now = fe_run(s, stored.provenance.elements, 2.0 * stored.provenance.step)?;
+    // The run is the case's (its mesh and step are in the physics hash), not the file's: a
+    // file whose provenance says otherwise was not made from this case (an edited one said
+    // 10,000 elements and had the check allocate 21 GB).
+    let h = s.scene.reference_dt.unwrap_or(s.numerics.reference_dt);
+    let (n, made) = (s.numerics.reference_elements, &stored.provenance);
+    if made.elements != n || made.step != h {
+        let why = format!(
+            "provenance: {} elements at {} s, but the case makes its reference with \
+             numerics.reference_elements = {n} at {h} s",
+            made.elements, made.step
+        );
+        return Err(reference::grid_error(root, p.case(), p.scene(), why).to_string());
+    }
+    let now = fe_run(s, n, 2.0 * h)?;
     let track: Vec<(f64, BeamObs)> = stored
         .t
         .iter()
