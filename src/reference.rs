@@ -164,13 +164,28 @@ pub fn load_as<R: Stored>(
 /// `*.tmp<pid>` behind) and on SIGINT (`output::interrupt`); those a killed process left
 /// beside `path` are removed by the next write of it.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    write_atomic_with(path, |w| w.write_all(bytes))
+}
+
+/// [`write_atomic`] of what `write` writes into the buffered temporary file: a large document
+/// is serialised into the file as it is made, never held whole in memory.
+pub fn write_atomic_with(
+    path: &Path,
+    write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    use std::io::Write;
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)?;
     }
     crate::output::remove_stale_tmp(path);
     let tmp = path.with_extension(format!("tmp{}", std::process::id()));
     crate::output::interrupt::register(&tmp);
-    let r = std::fs::write(&tmp, bytes)
+    let r = std::fs::File::create(&tmp)
+        .and_then(|f| {
+            let mut w = std::io::BufWriter::new(f);
+            write(&mut w)?;
+            w.flush()
+        })
         .and_then(|()| std::fs::rename(&tmp, path))
         .inspect_err(|_| {
             let _ = std::fs::remove_file(&tmp);

@@ -154,7 +154,8 @@ fn missing_and_stale_references_exit_2() {
 
 /// A diverging run (euler on nine_spring at 0.1 s: the state overflows within 3.5 s) ends as
 /// `failed` with its kind (`non_finite`) and time while every other run of the same command
-/// completes; a run past its step budget fails with `work_limit`.
+/// completes; a ladder run past its step budget (a `--t-end`) fails with `work_limit`, and a
+/// `trajectory --dt` past it is refused before the run (exit 2, nothing written).
 #[test]
 fn diverging_and_over_budget_runs_are_typed_failures() {
     let dir = cases_with("diverge", "nine_spring.toml", |t| {
@@ -224,11 +225,32 @@ fn diverging_and_over_budget_runs_are_typed_failures() {
         "--out",
         dir2.join("t.json").to_str().unwrap(),
     ]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    let t: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir2.join("t.json")).unwrap()).unwrap();
-    assert_eq!(t["status"], "failed");
-    assert_eq!(t["failure"]["kind"], "work_limit");
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("max_steps = 2000000"), "{}", stderr(&o));
+    assert!(!dir2.join("t.json").exists());
+    let out2 = dir2.join("out");
+    let o = run(&[
+        "run",
+        "--quick",
+        "--cases",
+        dir2.to_str().unwrap(),
+        "--scene",
+        "large",
+        "--param",
+        "so3",
+        "--integrator",
+        "euler",
+        "--t-end",
+        "3000",
+        "--out",
+        out2.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out2.join("summary.json")).unwrap()).unwrap();
+    let r = &s["records"][0];
+    assert_eq!(r["status"], "failed", "{r}");
+    assert_eq!(r["failure"]["kind"], "work_limit", "{r}");
     let _ = std::fs::remove_dir_all(&dir);
     let _ = std::fs::remove_dir_all(&dir2);
 }

@@ -67,13 +67,15 @@ pub const PRESENTATION_SCENE_KEYS: [&str; 3] = ["name", "ladders", "control"];
 /// family (a family declares its own in `problem::Family::settings`): the scoring's
 /// normalisation and primary metric, how references are made, the work budgets, the
 /// sampling of the series and trajectories.
-pub const SHARED_SETTINGS: [&str; 7] = [
+pub const SHARED_SETTINGS: [&str; 9] = [
     "primary_metric",
     "energy_scale",
     "reference",
     "max_steps",
     "max_rhs_evals",
     "max_adaptive_rhs_evals",
+    "max_memory_mib",
+    "max_work",
     "scene.sample_every",
 ];
 

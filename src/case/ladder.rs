@@ -73,6 +73,10 @@ pub struct Ladder {
     pub order6: Vec<FixedStep>,
     /// Adaptive tolerances, each in (0, 1).
     pub tol: Vec<f64>,
+    /// The key path each class's list came from (`ladders.order1`,
+    /// `scene[2].ladders.quick.order6`; empty for a class without a list), in
+    /// `OrderClass::ALL` order.
+    pub paths: [String; 3],
 }
 
 impl Ladder {
@@ -83,6 +87,17 @@ impl Ladder {
             OrderClass::Order2To4 => &self.order2_4,
             OrderClass::Order6 => &self.order6,
         }
+    }
+
+    /// The step of one class that takes the most steps, with its key path
+    /// (`ladders.order2_4[3]`); None for an empty class.
+    pub fn finest(&self, class: OrderClass) -> Option<(String, FixedStep)> {
+        let i = OrderClass::ALL.iter().position(|c| *c == class)?;
+        self.fixed(class)
+            .iter()
+            .enumerate()
+            .max_by_key(|(_, s)| s.steps)
+            .map(|(j, s)| (format!("{}[{j}]", self.paths[i]), *s))
     }
 }
 
@@ -228,13 +243,17 @@ impl Ctx<'_> {
             }
         };
         let mut out = Ladder::default();
-        for class in OrderClass::ALL {
+        for (i, class) in OrderClass::ALL.into_iter().enumerate() {
             let steps = match pick(class.key()) {
-                Some((path, v)) => v
-                    .iter()
-                    .enumerate()
-                    .map(|(j, h)| self.fixed_step(&format!("{path}[{j}]"), *h, span, max_steps))
-                    .collect::<Res<Vec<_>>>()?,
+                Some((path, v)) => {
+                    let steps = v
+                        .iter()
+                        .enumerate()
+                        .map(|(j, h)| self.fixed_step(&format!("{path}[{j}]"), *h, span, max_steps))
+                        .collect::<Res<Vec<_>>>()?;
+                    out.paths[i] = path;
+                    steps
+                }
                 None => Vec::new(),
             };
             match class {

@@ -5,6 +5,7 @@ use super::*;
 use crate::math::so3;
 use crate::model::rigid_body::case::{AngularInit, RigidCase, RigidScene, initial, rigid_body};
 use nalgebra::Matrix3;
+use nalgebra::Vector3;
 
 const NINE: &str = include_str!("../../cases/nine_spring.toml");
 

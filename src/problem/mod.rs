@@ -229,6 +229,13 @@ pub struct Family {
     /// `case::hash::SHARED_SETTINGS`) is physics and must move `inputs_sha256`.
     /// `case/hash_tests.rs` holds every family to this for every key of its case files.
     pub settings: &'static [&'static str],
+    /// What one run of a scene needs (memory, steps, work), estimated from the loaded case's
+    /// numbers before anything that grows with them exists: `case::load_str` checks it
+    /// against the case's budgets for every scene and refuses the case above one, naming
+    /// the key (cases/README.md, "Budgets"). Required, so no family skips it; for it to come before
+    /// any large allocation, a family's `load` keeps only what the file says (a count, not
+    /// what it counts) and `compile` and the runs build the rest.
+    pub estimate: fn(&Case, &Scene) -> crate::case::Estimate,
     /// Compiles one scene of a validated case.
     pub compile: Compile,
     /// The family's figures in the report.

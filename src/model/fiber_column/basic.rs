@@ -51,6 +51,8 @@ pub enum ElementFailure {
     NoConvergence { iterations: usize, energy: f64 },
     /// A non-finite force or deformation.
     NotFinite,
+    /// The run's work budget allows no more element iterations (`meter.rs`).
+    WorkLimit,
 }
 
 impl std::fmt::Display for ElementFailure {
@@ -65,6 +67,7 @@ impl std::fmt::Display for ElementFailure {
                 "element iterations did not converge in {iterations} (last correction energy {energy:e})"
             ),
             Self::NotFinite => write!(f, "non-finite element state"),
+            Self::WorkLimit => write!(f, "the run's budget allows no more element iterations"),
         }
     }
 }
@@ -128,6 +131,9 @@ pub struct ForceBased {
     pub iterations: u64,
     /// Subdivided state determinations since construction (see [`ForceBased::update`]).
     pub subdivisions: u64,
+    /// The element iterations stop with [`ElementFailure::WorkLimit`] when `iterations`
+    /// reaches this ([`ForceBased::allow`]; unlimited by default).
+    stop_at: u64,
 }
 
 impl ForceBased {
@@ -195,7 +201,14 @@ impl ForceBased {
             committed: state,
             iterations: 0,
             subdivisions: 0,
+            stop_at: u64::MAX,
         })
+    }
+
+    /// Allows `n` more element iterations (the run's budget, `meter.rs`); past them a state
+    /// determination fails with [`ElementFailure::WorkLimit`], without subdividing.
+    pub fn allow(&mut self, n: u64) {
+        self.stop_at = self.iterations.saturating_add(n);
     }
 
     /// The section positions `xi = x/L` (Gauss-Lobatto).
@@ -213,6 +226,9 @@ impl ForceBased {
         let v5 = v.fixed_rows::<5>(0).into_owned();
         let failure = self.iterate_to(&v5).err();
         if let Some(first) = failure {
+            if first == ElementFailure::WorkLimit {
+                return Err(first);
+            }
             let mut done = false;
             for parts in [4usize, 16, 64] {
                 self.subdivisions += 1;
@@ -221,9 +237,13 @@ impl ForceBased {
                 let mut ok = true;
                 for k in 1..=parts {
                     let target = v0 + (v5 - v0) * (k as f64 / parts as f64);
-                    if self.iterate_to(&target).is_err() {
-                        ok = false;
-                        break;
+                    match self.iterate_to(&target) {
+                        Ok(()) => {}
+                        Err(ElementFailure::WorkLimit) => return Err(ElementFailure::WorkLimit),
+                        Err(_) => {
+                            ok = false;
+                            break;
+                        }
                     }
                 }
                 if ok {
@@ -250,6 +270,9 @@ impl ForceBased {
         let mut first = 0.0f64;
         let mut last = f64::INFINITY;
         for iter in 0..self.max_iter {
+            if self.iterations >= self.stop_at {
+                return Err(ElementFailure::WorkLimit);
+            }
             self.iterations += 1;
             let mut vq = V5::zeros();
             for i in 0..n {
@@ -450,6 +473,12 @@ impl Basic {
         match self {
             Basic::Force(e) => e.iterations,
             Basic::Disp(_) => 0,
+        }
+    }
+    /// Allows `n` more element iterations (a force-based element; nothing for the other).
+    pub fn allow(&mut self, n: u64) {
+        if let Basic::Force(e) = self {
+            e.allow(n);
         }
     }
     /// Subdivided state determinations so far (0 for the displacement-based element).

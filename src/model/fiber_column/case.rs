@@ -18,18 +18,22 @@
 //! they refuse; the fiber layout lies inside its outline and has fibers (`layout.rs`); a
 //! cyclic scene's `t_end` is its protocol's length in increments and every drift amplitude
 //! is a whole number of increments (so every ladder step that divides the score grid lands
-//! on the reversals). Where it fails: nothing here checks that the chosen counts converge;
-//! the case file's comments give the evidence.
+//! on the reversals). A loaded case holds nothing that grows with its counts: the protocol
+//! is kept by its amplitudes (`protocol.rs`) and the fiber layout unexpanded (a run makes
+//! the fibers), so the family's memory and work estimate (`estimate.rs`) is checked before
+//! anything large exists. Where it fails: nothing here checks that the chosen counts
+//! converge; the case file's comments give the evidence.
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
-use super::layout::{Layer, Patch, fiber_section};
+use super::layout::{Layer, Patch, SectionSpec, check_layout};
 use super::material::{
     Concrete01, Concrete01Params, Concrete02, Concrete02Params, Elastic, ElasticParams, Material,
     ParamError, Steel01, Steel01Params, Steel02, Steel02Params,
 };
-use super::section::{ElasticSection, FiberSection, Section};
+use super::protocol::Protocol;
+use super::section::ElasticSection;
 use crate::case::{Case, CaseError, Ctx, ReferenceKind, Res, Scene};
 
 crate::case_schema! {
@@ -187,8 +191,7 @@ pub enum Loading {
         axial: f64,
         axial_steps: usize,
         /// The top displacement (m) at every integer `t` from 0 to `t_end`.
-        protocol: Vec<f64>,
-        increment: f64,
+        protocol: Protocol,
     },
     /// The axial load, then the ground-acceleration pulse.
     Pulse {
@@ -226,10 +229,11 @@ impl Loading {
     }
 }
 
-/// A scene's physics: the section with its materials and the loading.
+/// A scene's physics: the section with its materials (its fibers are made per run) and the
+/// loading.
 #[derive(Debug, Clone)]
 pub struct ColumnScene {
-    pub section: Section,
+    pub section: SectionSpec,
     pub loading: Loading,
     /// The scene's materials and load as written (what an external reference's model is
     /// compared with, key by key: `opensees_model.rs`).
@@ -250,6 +254,27 @@ fn count(cx: &Ctx, key: &str, x: f64) -> Res<usize> {
     Ok(cx.count(key, x)? as usize)
 }
 
+/// The most Newton iterations of a step and element iterations of a state determination a
+/// case may allow (`numerics.max_iter`, `element_max_iter`; the catalogue's take 20 to 50):
+/// a limit of 1e9 with a tolerance no step meets ran for hours. The run's budgets bound the
+/// iterations of a whole run (`meter.rs`).
+pub const MAX_ITER_CAP: u64 = 1000;
+
+/// An iteration limit: a count up to [`MAX_ITER_CAP`].
+fn iteration_limit(cx: &Ctx, key: &str, x: f64) -> Res<usize> {
+    let n = cx.count(key, x)?;
+    if n > MAX_ITER_CAP {
+        return cx.err(
+            key,
+            format!(
+                "{n} is above its hard cap {MAX_ITER_CAP} (cases/README.md, \"Fiber-column \
+                 keys\")"
+            ),
+        );
+    }
+    Ok(n as usize)
+}
+
 fn numerics(cx: &Ctx, n: &RawNumerics) -> Res<Numerics> {
     let points = count(cx, "numerics.points", n.points)?;
     if !(3..=10).contains(&points) {
@@ -260,9 +285,9 @@ fn numerics(cx: &Ctx, n: &RawNumerics) -> Res<Numerics> {
     }
     Ok(Numerics {
         tol: cx.positive("numerics.tol", n.tol, "an energy in J")?,
-        max_iter: count(cx, "numerics.max_iter", n.max_iter)?,
+        max_iter: iteration_limit(cx, "numerics.max_iter", n.max_iter)?,
         element_tol: cx.positive("numerics.element_tol", n.element_tol, "a relative energy")?,
-        element_max_iter: count(cx, "numerics.element_max_iter", n.element_max_iter)?,
+        element_max_iter: iteration_limit(cx, "numerics.element_max_iter", n.element_max_iter)?,
         points,
         elements: count(cx, "numerics.elements", n.elements)?,
         fine_elements: n
@@ -280,8 +305,8 @@ fn case_physics(cx: &Ctx, own: &CaseOwn) -> Res<ColumnCase> {
             cx.positive("section.elastic.ei", e.ei, "a bending stiffness in N m^2")?,
         )),
         (None, Some(d), Some(w)) => {
-            cx.positive("section.depth", d, "a length in m")?;
-            cx.positive("section.width", w, "a length in m")?;
+            cx.length("section.depth", d, "a depth")?;
+            cx.length("section.width", w, "a width")?;
             None
         }
         _ => {
@@ -301,7 +326,7 @@ fn case_physics(cx: &Ctx, own: &CaseOwn) -> Res<ColumnCase> {
     });
     Ok(ColumnCase {
         numerics: numerics(cx, &own.numerics)?,
-        height: cx.positive("column.height", own.column.height, "a length in m")?,
+        height: cx.length("column.height", own.column.height, "a height")?,
         gj: cx.positive("column.gj", own.column.gj, "a torsional stiffness in N m^2")?,
         elastic,
         raw_section: own.section.clone(),
@@ -347,7 +372,7 @@ fn fiber_layout(
     i: usize,
     s: &RawSection,
     materials: &BTreeMap<String, Material>,
-) -> Res<FiberSection> {
+) -> Res<SectionSpec> {
     let pick = |key: String, name: &str| -> Res<Material> {
         match materials.get(name) {
             Some(m) => Ok(*m),
@@ -385,24 +410,29 @@ fn fiber_layout(
         });
     }
     let (depth, width) = (s.depth.unwrap_or(0.0), s.width.unwrap_or(0.0));
-    fiber_section(depth, width, &patches, &layers).or_else(|e| cx.err("section", e))
+    check_layout(depth, width, &patches, &layers).or_else(|e| cx.err("section", e))?;
+    Ok(SectionSpec::Fiber {
+        depth,
+        width,
+        patches,
+        layers,
+    })
 }
 
-/// The protocol's top displacement at every integer `t`: `cycles` full cycles
-/// `0 -> +d -> -d -> 0` of each amplitude `d = drift H`, `increment` per unit of `t`.
+/// The protocol of `cycles` full cycles `0 -> +d -> -d -> 0` of each amplitude `d = drift H`,
+/// `increment` per unit of `t`, held by its amplitudes in increments (nothing is expanded).
 fn protocol(
     cx: &Ctx,
     key: &str,
     drifts: &[f64],
-    cycles: usize,
+    cycles: u64,
     increment: f64,
     h: f64,
-) -> Res<Vec<f64>> {
+) -> Res<Protocol> {
     if drifts.is_empty() {
         return cx.err(format!("{key}.drifts"), "empty; expected drift ratios");
     }
-    let mut out = vec![0.0];
-    let mut u: i64 = 0;
+    let mut amplitudes = Vec::with_capacity(drifts.len());
     for (j, &d) in drifts.iter().enumerate() {
         let k = format!("{key}.drifts[{j}]");
         let d = cx.positive(&k, d, "a drift ratio")?;
@@ -416,17 +446,24 @@ fn protocol(
                 ),
             );
         }
-        let a = n.round() as i64;
-        for _ in 0..cycles {
-            for target in [a, -a, 0] {
-                while u != target {
-                    u += (target - u).signum();
-                    out.push(u as f64 * increment);
-                }
-            }
+        if n.round() > super::protocol::MAX_INCREMENTS as f64 {
+            return cx.err(
+                k,
+                format!(
+                    "{d} H = {:e} m is {n:e} increments of {increment} m, more than a \
+                     protocol can hold (2^53)",
+                    d * h
+                ),
+            );
         }
+        amplitudes.push(n.round() as u64);
     }
-    Ok(out)
+    Protocol::new(amplitudes, cycles, increment).or_else(|e| {
+        cx.err(
+            key,
+            format!("drifts, cycles and increment: {e}; expected fewer or smaller cycles"),
+        )
+    })
 }
 
 /// The value of a key the loading's kind needs (optional in the schema, which takes every
@@ -461,12 +498,11 @@ fn loading(cx: &Ctx, i: usize, l: &RawLoad, h: f64) -> Res<Loading> {
             let (k, what) = (format!("{key}.increment"), "a displacement increment in m");
             let increment = cx.positive(&k, needed(cx, &k, l.increment, what)?, what)?;
             let k = format!("{key}.cycles");
-            let cycles = count(cx, &k, needed(cx, &k, l.cycles, "a cycle count")?)?;
+            let cycles = cx.count(&k, needed(cx, &k, l.cycles, "a cycle count")?)?;
             Ok(Loading::Cyclic {
                 axial,
                 axial_steps,
                 protocol: protocol(cx, &key, drifts, cycles, increment, h)?,
-                increment,
             })
         }
         (None, None, None, Some(p)) => {
@@ -529,7 +565,9 @@ fn scene_physics(
                     "an elastic section takes no materials",
                 );
             }
-            Section::Elastic(ElasticSection::new(ea, ei, ei).or_else(|e| cx.err("section", e))?)
+            SectionSpec::Elastic(
+                ElasticSection::new(ea, ei, ei).or_else(|e| cx.err("section", e))?,
+            )
         }
         None => {
             let mut materials = BTreeMap::new();
@@ -537,15 +575,18 @@ fn scene_physics(
                 let k = format!("scene[{i}].materials.{name}");
                 materials.insert(name.clone(), material(cx, &k, m)?);
             }
-            Section::Fiber(fiber_layout(cx, i, &c.raw_section, &materials)?)
+            fiber_layout(cx, i, &c.raw_section, &materials)?
         }
     };
     if let Loading::Cyclic { protocol, .. } = &loading {
-        let n = (protocol.len() - 1) as f64;
+        let n = protocol.len() as f64;
         if grid_t_end != n {
             return cx.err(
                 format!("scene[{i}].t_end"),
-                format!("{grid_t_end}; the protocol has {n} increments, so t_end = {n}"),
+                format!(
+                    "{grid_t_end}; the protocol of scene[{i}].load (drifts, cycles, increment) \
+                     has {n} increments, so t_end = {n}"
+                ),
             );
         }
     }

@@ -240,3 +240,79 @@ fn the_reference_kind_fits_the_scenes() {
     assert_eq!(e.key, "reference", "{e}");
     assert!(e.message.contains("`exact` or `external`"), "{e}");
 }
+
+/// A length outside 1e-6 to 1e6 m (the height of `1e300` that made elements of infinite
+/// length, and a cyclic protocol of 5e300 increments) is refused naming its key.
+#[test]
+fn non_physical_lengths_are_refused() {
+    let e = refused("fiber_column_static", "height = 1.0\n", "height = 1.0e300\n");
+    assert_eq!(e.key, "column.height", "{e}");
+    assert!(e.message.contains("1000000"), "{e}");
+    let e = refused("fiber_column_cyclic", "height = 3.0\n", "height = 1.0e300\n");
+    assert_eq!(e.key, "column.height", "{e}");
+    let e = refused("fiber_column_cyclic", "depth = 0.5\n", "depth = 1.0e-9\n");
+    assert_eq!(e.key, "section.depth", "{e}");
+    assert!(edited("fiber_column_static", "height = 1.0\n", "height = 1.0e6\n").is_ok());
+}
+
+/// Iteration limits above their hard cap (1000) are refused naming the key: `max_iter = 1e9`
+/// with a tolerance no step meets used to run for hours.
+#[test]
+fn iteration_limits_have_a_hard_cap() {
+    let runaway = "tol = 1.0e-300\nmax_iter = 1.0e9";
+    let e = refused("fiber_column_cyclic", "tol = 1.0e-20\nmax_iter = 50", runaway);
+    assert_eq!(e.key, "numerics.max_iter", "{e}");
+    assert!(e.message.contains("1000"), "{e}");
+    let e = refused(
+        "fiber_column_cyclic",
+        "element_max_iter = 50",
+        "element_max_iter = 1.0e9",
+    );
+    assert_eq!(e.key, "numerics.element_max_iter", "{e}");
+}
+
+/// Newton iterations, state determinations and element iterations count against
+/// `max_rhs_evals`: a tolerance no step meets, with a budget of 300, ends the run as a typed
+/// `work_limit` naming the key during the axial prelude (t = 0), where the iteration limit
+/// alone would have allowed 1000 iterations a step.
+#[test]
+fn iterations_count_against_the_run_budget() {
+    let text = source("fiber_column_cyclic")
+        .replacen("tol = 1.0e-20\nmax_iter = 50", "tol = 1.0e-300\nmax_iter = 1000", 1)
+        .replacen(
+            "reference = \"external\"\n",
+            "reference = \"external\"\nmax_rhs_evals = 300\n",
+            1,
+        );
+    let c = case::load_str("cases/fiber_column_cyclic.toml", &text).unwrap();
+    let p = (family_of(&c).compile)(&c, &c.scenes[0]).unwrap();
+    let v = family_of(&c)
+        .find("so3", "newton_disp_krylov", "force_based")
+        .unwrap();
+    let out = p.run(v, Stepping::Dt(5.0), Want::Scored).unwrap();
+    let f = out.failure.expect("a failure");
+    assert_eq!(f.kind, FailureKind::WorkLimit, "{f:?}");
+    assert_eq!(f.t, 0.0);
+    assert!(f.message.contains("max_rhs_evals = 300"), "{f:?}");
+}
+
+/// The axial prelude's steps count against `max_steps` in a run too: with 5,885 steps
+/// allowed, the 10 prelude steps and 1,176 steps of 5 increments run, the 5,880 steps of 1
+/// increment are refused before the run starts.
+#[test]
+fn the_prelude_counts_against_max_steps() {
+    let text = source("fiber_column_cyclic")
+        .replacen("order2_4 = [5.0, 1.0]", "order2_4 = [5.0]", 1)
+        .replacen(
+            "reference = \"external\"\n",
+            "reference = \"external\"\nmax_steps = 5885\n",
+            1,
+        );
+    let c = case::load_str("cases/fiber_column_cyclic.toml", &text).unwrap();
+    let p = (family_of(&c).compile)(&c, &c.scenes[0]).unwrap();
+    let v = family_of(&c)
+        .find("so3", "newton_disp_krylov", "force_based")
+        .unwrap();
+    let e = p.run(v, Stepping::Dt(1.0), Want::Timing).unwrap_err();
+    assert!(e.contains("10 prelude steps") && e.contains("5885"), "{e}");
+}

@@ -26,6 +26,7 @@
 use nalgebra::{DMatrix, DVector, Vector3};
 
 use super::basic::{Basic, ElementFailure};
+use super::meter::Meter;
 use super::chart::RotationChart;
 use super::corotational::Corotational;
 use super::krylov::Krylov;
@@ -43,6 +44,8 @@ pub enum NewtonFailure {
     },
     /// The tangent is singular.
     SingularTangent,
+    /// The run's budget is spent (`meter.rs`; the message names the key).
+    WorkLimit(String),
 }
 
 impl std::fmt::Display for NewtonFailure {
@@ -54,6 +57,7 @@ impl std::fmt::Display for NewtonFailure {
             ),
             Self::Element { element, failure } => write!(f, "element {element}: {failure}"),
             Self::SingularTangent => write!(f, "singular tangent"),
+            Self::WorkLimit(why) => write!(f, "{why}"),
         }
     }
 }
@@ -182,6 +186,8 @@ pub struct Column<C: RotationChart> {
     krylov: Krylov,
     /// The energy-consistent correction's `e` in use (see [`Inertia`]).
     work_e: f64,
+    /// The run's budgets as the iterations spend them (unlimited unless set).
+    meter: Meter,
 }
 
 impl<C: RotationChart> Column<C> {
@@ -221,7 +227,13 @@ impl<C: RotationChart> Column<C> {
             line_evaluations: 0,
             krylov: Krylov::new(dim, KRYLOV_DIM),
             work_e: 0.0,
+            meter: Meter::unlimited(),
         })
+    }
+
+    /// Meters the iterations against a run's budgets from now on.
+    pub fn set_meter(&mut self, meter: Meter) {
+        self.meter = meter;
     }
 
     /// The number of unknowns (6 per free node).
@@ -262,13 +274,23 @@ impl<C: RotationChart> Column<C> {
         self.f_int.fill(0.0);
         self.k.fill(0.0);
         let mut base = Vector3::zeros();
+        self.meter.assembly()?;
         for (e, (cr, basic)) in self.elements.iter_mut().enumerate() {
             let (r1, r2) = (C::matrix(&self.rot[e]), C::matrix(&self.rot[e + 1]));
             let (x1, x2) = (self.x0[e] + self.u[e], self.x0[e + 1] + self.u[e + 1]);
             let (v, kin) = cr.at(&x1, &x2, &r1, &r2);
-            let (qb, kb) = basic.update(&v).map_err(|failure| NewtonFailure::Element {
-                element: e,
-                failure,
+            let before = basic.iterations();
+            basic.allow(self.meter.element_allowance());
+            let updated = basic.update(&v);
+            let force = matches!(basic, Basic::Force(_));
+            let spent = if force { basic.iterations() - before } else { 1 };
+            self.meter.elements(spent, force)?;
+            let (qb, kb) = updated.map_err(|failure| match failure {
+                ElementFailure::WorkLimit => self.meter.spent(),
+                failure => NewtonFailure::Element {
+                    element: e,
+                    failure,
+                },
             })?;
             let (f, k) = cr.global_at(&kin, &qb, &kb);
             if e == 0 {
@@ -394,6 +416,7 @@ impl<C: RotationChart> Column<C> {
         let line_search = algorithm == Algorithm::LineSearch;
         let mut energy = f64::INFINITY;
         for iter in 1..=max_iter {
+            self.meter.newton()?;
             // The first iteration of a step starts where the last step converged: its
             // assembly is still valid (same configuration, committed element states).
             if !(iter == 1 && self.assembled) {
@@ -457,6 +480,7 @@ impl<C: RotationChart> Column<C> {
         let mut refresh = true;
         self.krylov.reset();
         for iter in 1..=max_iter {
+            self.meter.newton()?;
             if !(iter == 1 && self.assembled) {
                 self.assemble()?;
             }

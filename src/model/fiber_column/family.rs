@@ -195,6 +195,7 @@ pub static FAMILY: Family = Family {
     static_na_reason,
     load: super::case::load,
     inputs: super::case::inputs,
+    estimate: super::estimate::estimate,
     compile,
     figures: &FIGURES,
     // The four schemes of the pulse and the static scenes' load control.

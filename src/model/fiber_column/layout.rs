@@ -1,7 +1,9 @@
 //! Fiber layouts: rectangular patches divided into a grid of fibers and straight layers of
 //! bars, turned into the fibers of a [`FiberSection`] (OpenSees' `patch rect` and `layer
 //! straight`, with the same fiber positions: patch fibers at the centres of equal cells, bars
-//! equally spaced from one end of the layer to the other).
+//! equally spaced from one end of the layer to the other). The case loader checks a layout
+//! without making its fibers ([`check_layout`]) and keeps it as a [`SectionSpec`]; a run
+//! makes the fibers.
 //!
 //! Coordinates are the section's local `y` (the depth, in the plane of bending) and `z` (the
 //! width). A layout is checked against the section's outline `|y| <= depth/2`,
@@ -10,7 +12,7 @@
 //! OpenSees' layouts of the same column), which overstates the concrete area by the bars'
 //! area (0.5 % here).
 use super::material::Material;
-use super::section::{Fiber, FiberSection};
+use super::section::{ElasticSection, Fiber, FiberSection, Section};
 
 /// A rectangle `[y0, y1] x [z0, z1]` divided into `ny x nz` fibers of one material.
 #[derive(Debug, Clone)]
@@ -56,6 +58,59 @@ pub fn fiber_section(
     patches: &[Patch],
     layers: &[Layer],
 ) -> Result<FiberSection, String> {
+    check_layout(depth, width, patches, layers)?;
+    let mut fibers = Vec::new();
+    for p in patches {
+        let (dy, dz) = (p.y[1] - p.y[0], p.z[1] - p.z[0]);
+        let area = dy * dz / (p.ny * p.nz) as f64;
+        for i in 0..p.ny {
+            for j in 0..p.nz {
+                fibers.push(Fiber {
+                    y: p.y[0] + dy * (i as f64 + 0.5) / p.ny as f64,
+                    z: p.z[0] + dz * (j as f64 + 0.5) / p.nz as f64,
+                    area,
+                    material: p.material,
+                });
+            }
+        }
+    }
+    for l in layers {
+        for k in 0..l.n {
+            let (y, z) = bar(l, k);
+            fibers.push(Fiber {
+                y,
+                z,
+                area: l.area,
+                material: l.material,
+            });
+        }
+    }
+    FiberSection::new(fibers)
+}
+
+/// Bar `k` of a layer: equally spaced from `(y[0], z[0])` to `(y[1], z[1])`.
+fn bar(l: &Layer, k: usize) -> (f64, f64) {
+    let s = if l.n == 1 {
+        0.0
+    } else {
+        k as f64 / (l.n - 1) as f64
+    };
+    (
+        l.y[0] + s * (l.y[1] - l.y[0]),
+        l.z[0] + s * (l.z[1] - l.z[0]),
+    )
+}
+
+/// Checks a layout without making its fibers (the case loader's check, whatever the counts):
+/// the errors [`fiber_section`] gives, in the same order. A layer's bars lie on a segment
+/// and each coordinate of `bar` is monotone in `k` (rounding included), so the bars inside
+/// the outline are a run from the first: a bisection finds the first bar outside.
+pub fn check_layout(
+    depth: f64,
+    width: f64,
+    patches: &[Patch],
+    layers: &[Layer],
+) -> Result<(), String> {
     if !(depth > 0.0 && width > 0.0 && depth.is_finite() && width.is_finite()) {
         return Err(format!(
             "section outline {depth} x {width} must be positive"
@@ -63,7 +118,6 @@ pub fn fiber_section(
     }
     let tol = 1e-12 * depth.max(width);
     let inside = |y: f64, z: f64| y.abs() <= 0.5 * depth + tol && z.abs() <= 0.5 * width + tol;
-    let mut fibers = Vec::new();
     for p in patches {
         if p.ny == 0 || p.nz == 0 {
             return Err(format!(
@@ -84,17 +138,6 @@ pub fn fiber_section(
                 p.name, p.y, p.z
             ));
         }
-        let area = dy * dz / (p.ny * p.nz) as f64;
-        for i in 0..p.ny {
-            for j in 0..p.nz {
-                fibers.push(Fiber {
-                    y: p.y[0] + dy * (i as f64 + 0.5) / p.ny as f64,
-                    z: p.z[0] + dz * (j as f64 + 0.5) / p.nz as f64,
-                    area,
-                    material: p.material,
-                });
-            }
-        }
     }
     for l in layers {
         if l.n == 0 || !(l.area > 0.0 && l.area.is_finite()) {
@@ -103,31 +146,97 @@ pub fn fiber_section(
                 l.name, l.n, l.area
             ));
         }
-        for k in 0..l.n {
-            let s = if l.n == 1 {
-                0.0
-            } else {
-                k as f64 / (l.n - 1) as f64
-            };
-            let (y, z) = (
-                l.y[0] + s * (l.y[1] - l.y[0]),
-                l.z[0] + s * (l.z[1] - l.z[0]),
-            );
-            if !inside(y, z) {
-                return Err(format!(
-                    "layer {}: bar {k} at ({y}, {z}) lies outside the {depth} x {width} section",
-                    l.name
-                ));
+        let is_in = |k: usize| {
+            let (y, z) = bar(l, k);
+            inside(y, z)
+        };
+        let first_out = if !is_in(0) {
+            Some(0)
+        } else if is_in(l.n - 1) {
+            None
+        } else {
+            // is_in(lo) and !is_in(hi).
+            let (mut lo, mut hi) = (0, l.n - 1);
+            while hi - lo > 1 {
+                let mid = lo + (hi - lo) / 2;
+                if is_in(mid) { lo = mid } else { hi = mid }
             }
-            fibers.push(Fiber {
-                y,
-                z,
-                area: l.area,
-                material: l.material,
-            });
+            Some(hi)
+        };
+        if let Some(k) = first_out {
+            let (y, z) = bar(l, k);
+            return Err(format!(
+                "layer {}: bar {k} at ({y}, {z}) lies outside the {depth} x {width} section",
+                l.name
+            ));
         }
     }
-    FiberSection::new(fibers)
+    if patches.is_empty() && layers.is_empty() {
+        return Err("a fiber section needs at least one fiber".into());
+    }
+    Ok(())
+}
+
+/// A scene's section as the case loader keeps it: an elastic section, or a checked fiber
+/// layout with its materials. The fibers are made when a run builds its column
+/// ([`SectionSpec::build`]), after the case's memory and work estimate has passed, so a
+/// loaded case holds nothing that grows with its fiber counts.
+#[derive(Debug, Clone)]
+pub enum SectionSpec {
+    Elastic(ElasticSection),
+    Fiber {
+        depth: f64,
+        width: f64,
+        patches: Vec<Patch>,
+        layers: Vec<Layer>,
+    },
+}
+
+impl SectionSpec {
+    /// The section with its fibers.
+    pub fn build(&self) -> Result<Section, String> {
+        Ok(match self {
+            SectionSpec::Elastic(e) => Section::Elastic(*e),
+            SectionSpec::Fiber {
+                depth,
+                width,
+                patches,
+                layers,
+            } => Section::Fiber(fiber_section(*depth, *width, patches, layers)?),
+        })
+    }
+
+    /// The fiber count (as a float: counts up to 9e15 multiply; an elastic section counts 1)
+    /// and the case key of the patch or layer with the most fibers (`""` for an elastic
+    /// section).
+    pub fn fibers(&self) -> (f64, String) {
+        let SectionSpec::Fiber {
+            patches, layers, ..
+        } = self
+        else {
+            return (1.0, String::new());
+        };
+        let mut total = 0.0;
+        let (mut most, mut key) = (0.0, String::new());
+        for (j, p) in patches.iter().enumerate() {
+            let n = p.ny as f64 * p.nz as f64;
+            total += n;
+            if n > most {
+                most = n;
+                let axis = if p.ny >= p.nz { "ny" } else { "nz" };
+                key = format!("section.patches[{j}].{axis}");
+            }
+        }
+        for (j, l) in layers.iter().enumerate() {
+            let n = l.n as f64;
+            total += n;
+            if n > most {
+                most = n;
+                key = format!("section.layers[{j}].n");
+            }
+        }
+        (total, key)
+    }
 }
 
 #[cfg(test)]

@@ -18,11 +18,13 @@
 //! RC column (cyclic, and under the ground-acceleration pulse with Newmark's rule), and
 //! `dynamic_tests.rs` the four schemes' pulse runs, energy balances and orders.
 //!
-//! The family's line in the table is `family.rs`; `case.rs` reads its case files,
+//! The family's line in the table is `family.rs`; `case.rs` reads its case files (a cyclic
+//! scene's displacement protocol kept by its amplitudes, `protocol.rs`),
 //! `run.rs` runs a static or cyclic scene and `run_dynamic.rs` the pulse, `problem.rs` scores it behind the `Problem` seam against
 //! `reference.rs`'s references (the exact ones cross-checked by `shooting.rs`; the external
 //! ones, OpenSees' runs, checked by `opensees.rs` and compared with the case's model field by
-//! field by `opensees_model.rs`).
+//! field by `opensees_model.rs`); `estimate.rs` says what a run of a scene needs (its
+//! budgets) and `meter.rs` holds a run to them.
 pub mod basic;
 pub mod case;
 #[cfg(test)]
@@ -38,15 +40,18 @@ mod dynamic_tests;
 pub mod elastica;
 #[cfg(test)]
 mod elastica_opensees_tests;
+pub mod estimate;
 pub mod family;
 pub mod krylov;
 pub mod layout;
 pub mod material;
+pub mod meter;
 pub mod opensees;
 pub mod opensees_model;
 #[cfg(test)]
 mod opensees_model_tests;
 pub mod problem;
+pub mod protocol;
 #[cfg(test)]
 mod pulse_tests;
 pub mod quadrature;

@@ -419,12 +419,9 @@ fn loading(
     m.same("axial_steps", &format!("{lk}.axial_steps"), axial_steps)?;
     st.same("axial_steps", &format!("{lk}.axial_steps"), axial_steps)?;
     match s.loading {
-        Loading::Cyclic {
-            ref protocol,
-            increment,
-            ..
-        } => {
-            let steps = (protocol.len() - 1) as f64;
+        Loading::Cyclic { ref protocol, .. } => {
+            let steps = protocol.len() as f64;
+            let increment = protocol.increment();
             cyclic(m, st, (c.height, &s.raw_load, &lk), (i, steps, increment))
         }
         _ => pulse(m, st, s, &lk, (i, t_end)),
@@ -531,7 +528,7 @@ fn pulse(m: &mut Obj, st: &mut Obj, s: &ColumnScene, lk: &str, (i, t_end): (usiz
 
 /// `W1 = (P/n)^2 (H/elements) / EA0`: an element's work `|v . q|` after the first of the
 /// `n` axial load steps (module docs).
-fn first_step_work(c: &ColumnCase, s: &ColumnScene) -> f64 {
+fn first_step_work(c: &ColumnCase, s: &ColumnScene) -> Result<f64, String> {
     let (axial, steps) = match s.loading {
         Loading::Cyclic {
             axial, axial_steps, ..
@@ -541,9 +538,11 @@ fn first_step_work(c: &ColumnCase, s: &ColumnScene) -> f64 {
         } => (axial, axial_steps as f64),
         _ => (0.0, 1.0),
     };
-    let ea0 = s.section.initial_tangent()[(0, 0)];
+    // The section's fibers, made here as a run makes them (the case was checked against its
+    // memory budget when it loaded).
+    let ea0 = s.section.build()?.initial_tangent()[(0, 0)];
     let p = axial / steps;
-    p * p * (c.height / c.numerics.elements as f64) / ea0
+    Ok(p * p * (c.height / c.numerics.elements as f64) / ea0)
 }
 
 fn tolerances(st: &mut Obj, c: &ColumnCase, s: &ColumnScene) -> Res {
@@ -560,7 +559,7 @@ fn tolerances(st: &mut Obj, c: &ColumnCase, s: &ColumnScene) -> Res {
     }
     st.convention("element_tol_measures", ELEMENT_TOL_MEASURE)?;
     let etol = st.num("element_tol")?;
-    let w1 = first_step_work(c, s);
+    let w1 = first_step_work(c, s)?;
     if etol > n.element_tol * w1 {
         return Err(format!(
             "stale: key `settings.element_tol` is {etol:e} J (absolute), looser than the \

@@ -98,6 +98,8 @@ impl FiberProblem {
                     score_every: scene.score_every,
                 },
                 max_steps: case.max_steps,
+                max_rhs_evals: case.max_rhs_evals,
+                max_work: case.max_work,
             },
             ladders: crate::plan::ladders(&scene.ladders),
             quick: crate::plan::ladders(&scene.quick),

@@ -21,13 +21,17 @@
 //!
 //! Where it fails: a load step past the column's limit point (load control), an element
 //! that does not converge even with its increment cut 64 times, or a Newton iteration
-//! limit: each ends the run with a typed `newton_failure` at the step's `t`.
+//! limit: each ends the run with a typed `newton_failure` at the step's `t`; iterations past
+//! the run's budgets (`max_rhs_evals`, `max_work`: `meter.rs`) end it as `work_limit`.
 use nalgebra::DVector;
 
 use super::basic::{Basic, DispBased, ForceBased};
 use super::case::{ColumnCase, ColumnScene, Loading};
 use super::chart::RotationChart;
 use super::column::{Algorithm, Column, NewtonFailure, Prescribed, StepCount};
+use super::estimate::Mesh;
+use super::meter::Meter;
+use super::section::Section;
 use crate::case::steps_dividing;
 use crate::integrate::{Failure, FailureKind, Stats};
 use crate::run::Grid;
@@ -38,7 +42,11 @@ pub struct Setup {
     pub case: ColumnCase,
     pub scene: ColumnScene,
     pub grid: Grid,
+    /// The case's budgets: the steps (the prelude's included), the state determinations and
+    /// element iterations, the work units (`meter.rs`).
     pub max_steps: u64,
+    pub max_rhs_evals: u64,
+    pub max_work: u64,
 }
 
 /// One observation of the column (SI units; energies in J).
@@ -108,7 +116,7 @@ pub fn build<C: RotationChart>(s: &Setup, form: Form) -> Result<Column<C>, Strin
         Form::DispBased(k) => (k, false),
     };
     let h = s.case.height / count as f64;
-    let section = &s.scene.section;
+    let section = &s.scene.section.build()?;
     let mut els = Vec::with_capacity(count);
     for _ in 0..count {
         els.push(if force {
@@ -124,7 +132,29 @@ pub fn build<C: RotationChart>(s: &Setup, form: Form) -> Result<Column<C>, Strin
             Basic::Disp(DispBased::new(h, s.case.gj, section, n.points)?)
         });
     }
-    Column::new(s.case.height, els)
+    let mut col = Column::new(s.case.height, els)?;
+    let fibers = match section {
+        Section::Fiber(f) => f.fibers().len() as f64,
+        Section::Elastic(_) => 1.0,
+    };
+    let mesh = Mesh {
+        count: count as f64,
+        points: n.points as f64,
+        fibers,
+        force,
+    };
+    col.set_meter(Meter::new(s.max_rhs_evals, s.max_work, &mesh));
+    Ok(col)
+}
+
+/// The axial prelude's load steps of a scene (0 without an axial load).
+pub fn prelude_steps(loading: &Loading) -> u64 {
+    match *loading {
+        Loading::Cyclic { axial_steps, .. } | Loading::Pulse { axial_steps, .. } => {
+            axial_steps as u64
+        }
+        _ => 0,
+    }
 }
 
 /// The axial prelude of a scene with an axial load (in its load steps, load control, plain
@@ -174,17 +204,24 @@ pub(super) fn steps(s: &Setup, dt: f64) -> Result<(u64, u64, u64), String> {
     let per_score = steps_dividing(g.score_every, dt).ok_or_else(|| {
         format!("the step {dt} does not divide score_every = {}", g.score_every)
     })?;
-    if n > s.max_steps {
+    let prelude = prelude_steps(&s.scene.loading);
+    if n.saturating_add(prelude) > s.max_steps {
         return Err(format!(
-            "{n} steps are over the case's max_steps = {}",
+            "{n} steps after {prelude} prelude steps are over the case's max_steps = {}",
             s.max_steps
         ));
     }
     Ok((n, per_sample, per_score))
 }
 
+/// The typed failure of a step: `work_limit` when the run's budget stopped it, else
+/// `newton_failure`.
 pub(super) fn failure(t: f64, e: NewtonFailure) -> Failure {
-    Failure::new(FailureKind::NewtonFailure, t, e.to_string())
+    let kind = match e {
+        NewtonFailure::WorkLimit(_) => FailureKind::WorkLimit,
+        _ => FailureKind::NewtonFailure,
+    };
+    Failure::new(kind, t, e.to_string())
 }
 
 /// The top's position at a step: displacement across and along the axis (m), turn (rad).
@@ -276,18 +313,14 @@ pub fn run_static<C: RotationChart>(
     let (load_dof, value) = match s.scene.loading {
         Loading::TipForce(v) => (Some(col.top_dof(0)), v),
         Loading::TipMoment(v) => (Some(col.top_dof(4)), v),
-        Loading::Cyclic {
-            ref protocol,
-            increment: _,
-            ..
-        } => {
-            let k = dt.round() as usize;
+        Loading::Cyclic { ref protocol, .. } => {
+            let k = dt.round() as u64;
             if (dt - dt.round()).abs() > 1e-9 || k == 0 {
                 return Err(format!(
                     "the step {dt} is not a whole number of protocol increments"
                 ));
             }
-            if let Some(i) = reversals(protocol).into_iter().find(|i| i % k != 0) {
+            if let Some(i) = protocol.skipped_reversal(k) {
                 return Err(format!(
                     "the step {dt} skips the protocol's reversal at t = {i}; a step must divide \
                      every protocol segment"
@@ -315,7 +348,7 @@ pub fn run_static<C: RotationChart>(
         let prescribed = match &s.scene.loading {
             Loading::Cyclic { protocol, .. } => Some(Prescribed {
                 dof: col.top_dof(0),
-                value: protocol[(t.round() as usize).min(protocol.len() - 1)],
+                value: protocol.at(t.round() as u64),
             }),
             _ => None,
         };
@@ -374,16 +407,4 @@ pub fn run_static<C: RotationChart>(
     out.samples = log.samples;
     out.peak_load = log.peak_load;
     Ok(out)
-}
-
-/// The indices of a protocol's reversals and returns to zero (segment ends).
-fn reversals(protocol: &[f64]) -> Vec<usize> {
-    let mut out = vec![];
-    for i in 1..protocol.len().saturating_sub(1) {
-        let (a, b) = (protocol[i] - protocol[i - 1], protocol[i + 1] - protocol[i]);
-        if a * b <= 0.0 || protocol[i] == 0.0 {
-            out.push(i);
-        }
-    }
-    out
 }

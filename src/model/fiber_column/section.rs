@@ -223,6 +223,12 @@ impl FiberSection {
         &self.fibers
     }
 
+    /// The bytes a section holds per fiber: the fiber as given, its place and its material's
+    /// state in its group (at most the largest model's).
+    pub fn bytes_per_fiber() -> usize {
+        std::mem::size_of::<Fiber>() + std::mem::size_of::<Place>() + std::mem::size_of::<Material>()
+    }
+
     fn set_trial(&mut self, e: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
         let mut sums = Sums::default();
         each_group!(mut self, g => g.set_trial(e, &mut sums));

@@ -162,6 +162,7 @@ pub static FAMILY: Family = Family {
     static_na_reason,
     load: super::case::load,
     inputs: super::case::inputs,
+    estimate: super::estimate::estimate,
     compile,
     figures: &FIGURES,
     // The explicit method whose limit the search measures and the implicit ones of the

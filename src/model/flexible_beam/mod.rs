@@ -10,10 +10,11 @@
 //! observes and the energy balance; `run.rs` the structural methods' run loop and `ode.rs` the
 //! ODE form for the generic integrators, both restarting at the scenes' breakpoints;
 //! `case.rs`, `family.rs`, `problem.rs`, `reference.rs` the family's case schema, table,
-//! scoring and stored reference.
+//! scoring and stored reference; `estimate.rs` what a run of a scene needs (its budgets).
 pub mod base;
 pub mod case;
 pub mod corotational;
+pub mod estimate;
 pub mod family;
 #[cfg(test)]
 mod family_tests;

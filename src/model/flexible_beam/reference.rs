@@ -12,8 +12,10 @@
 //! tolerance 1e-10). The file also holds one self-convergence track per formulation
 //! (`family::self_convergence`), the floor of that formulation's `tip_time_error_max`.
 //! `reference --check` recomputes it at coarser steps and checks every stored column and track
-//! against bounds of its own (`reference_check.rs`). Where it fails: a claim is only as good as
-//! the estimates' asymptotic regime; the note of the issue that built it shows the mesh ladder.
+//! against bounds of its own (`reference_check.rs`); a file whose provenance names another
+//! mesh or step than the case's is refused before any run. Where it fails: a claim is only as
+//! good as the estimates' asymptotic regime; the note of the issue that built it shows the
+//! mesh ladder.
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 

@@ -60,6 +60,18 @@ pub fn check(p: &BeamProblem, root: &Path) -> Result<(bool, String), String> {
     let s = &p.setup;
     let n = s.numerics.reference_elements;
     let h = s.scene.reference_dt.unwrap_or(s.numerics.reference_dt);
+    // The runs are the case's (its mesh and step are in the physics hash), never the file's:
+    // a file whose provenance says otherwise was not made from this case and is refused
+    // before any run (an edited one said 10,000 elements).
+    let made = &stored.provenance;
+    if made.elements != n || made.step != h {
+        let why = format!(
+            "provenance: {} elements at {} s, but the case makes its reference with \
+             numerics.reference_elements = {n} at {h} s",
+            made.elements, made.step
+        );
+        return Err(reference::grid_error(root, p.case(), p.scene(), why).to_string());
+    }
     let u2 = fe_run(s, n, 2.0 * h)?;
     let u4 = fe_run(s, n, 4.0 * h)?;
     let track: Vec<(f64, BeamObs)> = stored

@@ -3,7 +3,7 @@
 //! of the rigid core, the `body` / `spatial` Newton-Euler formulations), its metrics
 //! (cases/README.md, "Rigid-body metrics") and trajectory columns, and the registered variants of
 //! `registry.rs` as the family-independent [`Variant`] the suite dispatches through.
-use crate::case::{Case, CaseError, Scene};
+use crate::case::{Case, CaseError, Estimate, OdeCosts, ReferenceKind, Scene, ode_estimate};
 use crate::problem::{Axes, Column, Family, Metric, Problem, Variant};
 use crate::model::rigid_body::registry;
 
@@ -21,6 +21,7 @@ pub static FAMILY: Family = Family {
     static_na_reason: registry::static_na_reason,
     load: super::case::load,
     inputs: super::case::inputs,
+    estimate,
     compile,
     figures: &super::figures::FIGURES,
     // Every rigid-body key is physics: the references are integrated or exact from the
@@ -134,6 +135,47 @@ fn variants() -> &'static [Variant] {
             })
             .collect()
     })
+}
+
+/// A rigid-body run's costs, measured on the catalogue's quick tier (this machine, one job):
+/// an evaluation of the equations of motion takes 60 to 580 ns (the nine springs' dearest),
+/// counted as 600 units; per step, explicit methods take their stages, the implicit ones up
+/// to 17.6 evaluations (`implicit_midpoint`, order 2) and 48 (`gauss6`); a sample with its
+/// scores', series' and trajectory columns' share holds 364 bytes in a run (1e5 samples:
+/// 36 MB, `tests/estimates.rs`), counted as 400.
+const COSTS: OdeCosts = OdeCosts {
+    bytes_per_sample: 400.0,
+    rhs_work: 600.0,
+    evals_per_step: [1.0, 18.0, 50.0],
+};
+
+/// A scene's estimate (`case::budget::ode_estimate`), and a numerical reference's `gauss6`
+/// run over the horizon at its fine step (`reference` makes it, `reference --check` remakes
+/// it), named by the scene's `t_end`.
+fn estimate(case: &Case, scene: &Scene) -> Estimate {
+    let e = ode_estimate(case, scene, &COSTS);
+    let Some(c) = super::case::RigidCase::of(case) else {
+        return e;
+    };
+    if case.reference != ReferenceKind::Numerical {
+        return e;
+    }
+    let grid = crate::run::Grid {
+        t_end: scene.t_end,
+        sample_every: scene.sample_every,
+        score_every: scene.score_every,
+    };
+    let h = super::refgen::reference_step(&grid, c.body.pivot_com.is_some());
+    let key = format!("scene[{}].t_end", scene.index);
+    let bytes = (scene.n_score + 1) as f64 * COSTS.bytes_per_sample;
+    e.max(Estimate::run(
+        bytes,
+        &key,
+        scene.t_end / h,
+        &key,
+        COSTS.evals_per_step[2] * COSTS.rhs_work,
+        &key,
+    ))
 }
 
 fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {

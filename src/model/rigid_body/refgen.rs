@@ -55,8 +55,19 @@ fn fine_step(grid: &Grid, target: f64) -> f64 {
 }
 
 fn numerical_step(body: &RigidBody) -> f64 {
-    // Fast spin (heavy top: 150 rad/s) needs a finer step than the slow cases.
-    if body.pivot_com.is_some() { 1e-4 } else { 2e-3 }
+    numerical_target(body.pivot_com.is_some())
+}
+
+/// The target step of a numerical reference: fast spin (heavy top, 150 rad/s, on a pivot)
+/// needs a finer step than the slow cases.
+fn numerical_target(pivoted: bool) -> f64 {
+    if pivoted { 1e-4 } else { 2e-3 }
+}
+
+/// The step of a numerical reference (`gauss6`) of a scene on `grid`, for a body on a pivot
+/// or not (the family's estimate counts the reference's steps with it).
+pub fn reference_step(grid: &Grid, pivoted: bool) -> f64 {
+    fine_step(grid, numerical_target(pivoted))
 }
 
 /// Chooses how the primary reference of a scene is computed.

@@ -4,7 +4,7 @@
 use super::problem::{ChainProblem, Setup};
 use super::verlet::StormerVerlet;
 use super::{ChainObs, ChainSystem, Coordinates, Modal, Nodal};
-use crate::case::{Case, CaseError, Scene};
+use crate::case::{Case, CaseError, Estimate, OdeCosts, Scene, ode_estimate};
 use crate::integrate::adaptive_rk::AdaptiveRk;
 use crate::integrate::explicit_rk::ExplicitRk;
 use crate::integrate::{Adaptive, FixedStep};
@@ -92,6 +92,7 @@ pub static FAMILY: Family = Family {
     static_na_reason: |_, _, _| "not registered".into(),
     load: super::case::load,
     inputs: super::case::inputs,
+    estimate,
     compile,
     figures: &FIGURES,
     settings: &[],
@@ -175,6 +176,20 @@ pub fn table() -> &'static [(Variant, RunFn)] {
 fn variants() -> &'static [Variant] {
     static V: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
     V.get_or_init(|| table().iter().map(|(v, _)| *v).collect())
+}
+
+/// A chain run's costs: three masses, an evaluation of a few dozen flops (counted as 100
+/// units), four evaluations a step at most (`rk4`), a sample of two 3-vectors and its
+/// scores' share (counted as 200 bytes).
+const COSTS: OdeCosts = OdeCosts {
+    bytes_per_sample: 200.0,
+    rhs_work: 100.0,
+    evals_per_step: [1.0, 4.0, 4.0],
+};
+
+/// A scene's estimate: the small-state family's (`case::budget::ode_estimate`).
+fn estimate(case: &Case, scene: &Scene) -> Estimate {
+    ode_estimate(case, scene, &COSTS)
 }
 
 fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {
