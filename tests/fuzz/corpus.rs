@@ -8,8 +8,10 @@
 //! stderr), changes nothing outside its `--out`, leaves no `*.tmp*` file, and on exit 2 has
 //! not created its `--out`.
 //!
-//! The bases are the catalogue's case files and stored references and a summary made at the
-//! start by a tiny quick run (its volatile fields, commit, clock, machine and wall times, set to
+//! The bases are the catalogue's case files and stored references (the external ones, the
+//! fiber column's OpenSees runs, placed among the files their `MANIFEST.json` lists, the
+//! manifest re-hashed to the mutated file in half of them so that the record's own checks are
+//! reached) and a summary made at the start by a tiny quick run (its volatile fields, commit, clock, machine and wall times, set to
 //! fixed values); input `i` is drawn from a splitmix64 stream seeded by `SEED` and `i` alone,
 //! so the corpus is the same on every machine and a failure names the index that reproduces
 //! it (`MBDBENCH_FUZZ_CORPUS_INDEX=i`). The size is `MBDBENCH_FUZZ_CORPUS` (default 2000);
@@ -74,8 +76,26 @@ struct Base {
     stability: String,
     /// The series files, relative to the run's folder.
     series: Vec<(PathBuf, Vec<u8>)>,
-    /// Case, scene, and the stored reference's text.
-    references: Vec<(String, String, String)>,
+    /// The stored references, each with the case and scene whose check reads it.
+    references: Vec<BaseRef>,
+}
+
+/// Files by their path under a folder.
+type Files = Vec<(PathBuf, Vec<u8>)>;
+
+/// A stored reference of the catalogue.
+struct BaseRef {
+    case: String,
+    scene: String,
+    /// Its path under the references folder.
+    rel: PathBuf,
+    text: String,
+    /// For a file of a folder with a `MANIFEST.json` (an external reference: the fiber
+    /// column's OpenSees runs), every file the manifest lists and the manifest itself, as
+    /// stored, with the manifest's key of this file: the mutated file is placed among them,
+    /// and in half the inputs the manifest is re-hashed to it, so the record's own checks
+    /// are reached and not only the manifest's hash.
+    listed: Option<(Files, String)>,
 }
 
 /// A case file of the catalogue.
@@ -85,6 +105,8 @@ struct BaseCase {
     /// The case's name, and its scenes with their horizons.
     name: String,
     scenes: Vec<(String, f64)>,
+    /// Whether its references are external (another program's runs, checked by hash).
+    external: bool,
 }
 
 /// One invocation of the binary on an input.
@@ -126,6 +148,7 @@ fn input(i: usize, base: &Base, root: &Path) -> Input {
                 text,
                 name,
                 scenes,
+                ..
             } = r.choose(&base.cases);
             let (bytes, how) = mutate_toml(&mut r, text);
             what = format!("{file}: {how}");
@@ -216,10 +239,26 @@ fn input(i: usize, base: &Base, root: &Path) -> Input {
             }
         }
         Kind::Reference => {
-            let (case, scene, text) = r.choose(&base.references);
+            let BaseRef {
+                case,
+                scene,
+                rel,
+                text,
+                listed,
+            } = r.choose(&base.references);
             let (bytes, how) = mutate_json(&mut r, text);
-            what = format!("{case}/{scene}.json: {how}");
-            files.push((Path::new(case).join(format!("{scene}.json")), bytes));
+            what = format!("{} ({case}/{scene}): {how}", rel.display());
+            if let Some((companions, key)) = listed {
+                let rehash = r.chance(50);
+                for (p, b) in companions.iter().filter(|(p, _)| p != rel) {
+                    let b = match p.file_name() {
+                        Some(n) if n == "MANIFEST.json" && rehash => rehashed(b, key, &bytes),
+                        _ => b.clone(),
+                    };
+                    files.push((p.clone(), b));
+                }
+            }
+            files.push((rel.clone(), bytes));
             let refs = s(&dir);
             let mut a = args(&["reference", "--case", case, "--scene", scene, "--check"]);
             a.extend(["--references".into(), refs.clone()]);
@@ -573,6 +612,73 @@ const BASE_VARIANTS: &[&str] = &[
     "1",
 ];
 
+/// The manifest `manifest` with its hash of the file `key` set to that of `bytes`.
+fn rehashed(manifest: &[u8], key: &str, bytes: &[u8]) -> Vec<u8> {
+    let mut m: Value = serde_json::from_slice(manifest).unwrap();
+    m["sha256"][key] = Value::String(mbdbench::reference::sha256_hex(bytes));
+    serde_json::to_vec(&m).unwrap()
+}
+
+/// Every stored reference under `root` with the case and scene that check it: a file of a
+/// case's folder is its scene's; a file of a folder with a `MANIFEST.json` belongs to the
+/// external scene of its name, and the manifest (and a listed file no scene is named after)
+/// to the first external scene, whose check reads the whole folder.
+fn stored_references(root: &Path, cases: &[BaseCase]) -> Vec<BaseRef> {
+    let files: BTreeSet<PathBuf> = snapshot(root, &[])
+        .into_keys()
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .collect();
+    let external: Vec<(&str, &str)> = cases
+        .iter()
+        .filter(|c| c.external)
+        .flat_map(|c| c.scenes.iter().map(|s| (c.name.as_str(), s.0.as_str())))
+        .collect();
+    let mut out = vec![];
+    for p in files {
+        let rel = p.strip_prefix(root).unwrap().to_path_buf();
+        let stem = p.file_stem().unwrap().to_str().unwrap().to_string();
+        let text = std::fs::read_to_string(&p).unwrap();
+        let manifest = p.parent().unwrap().join("MANIFEST.json");
+        if !manifest.is_file() {
+            let case = p.parent().unwrap().file_name().unwrap().to_str().unwrap();
+            out.push(BaseRef {
+                case: case.to_string(),
+                scene: stem,
+                rel,
+                text,
+                listed: None,
+            });
+            continue;
+        }
+        let m: Value = serde_json::from_slice(&std::fs::read(&manifest).unwrap()).unwrap();
+        let mut companions = vec![(
+            manifest.strip_prefix(root).unwrap().to_path_buf(),
+            std::fs::read(&manifest).unwrap(),
+        )];
+        for k in m["sha256"].as_object().unwrap().keys() {
+            let r = PathBuf::from(k.strip_prefix("references/").unwrap());
+            companions.push((r.clone(), std::fs::read(root.join(&r)).unwrap()));
+        }
+        let key = format!("references/{}", rel.display());
+        let (case, scene) = *external
+            .iter()
+            .find(|(_, s)| *s == stem)
+            .unwrap_or(&external[0]);
+        out.push(BaseRef {
+            case: case.to_string(),
+            scene: scene.to_string(),
+            rel,
+            text,
+            listed: Some((companions, key)),
+        });
+    }
+    assert!(
+        out.iter().any(|r| r.listed.is_some()),
+        "no external reference found"
+    );
+    out
+}
+
 fn base(dir: &Path) -> Base {
     let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
     let run = dir.join("base");
@@ -617,19 +723,10 @@ fn base(dir: &Path) -> Base {
             text,
             name: c.name.clone(),
             scenes,
+            external: c.reference == mbdbench::case::ReferenceKind::External,
         });
     }
-    let mut references = vec![];
-    let files: BTreeSet<PathBuf> = snapshot(&manifest.join("references"), &[])
-        .into_keys()
-        .filter(|p| p.extension().is_some_and(|x| x == "json"))
-        .collect();
-    for p in files {
-        let case = p.parent().unwrap().file_name().unwrap().to_str().unwrap();
-        let scene = p.file_stem().unwrap().to_str().unwrap();
-        let text = std::fs::read_to_string(&p).unwrap();
-        references.push((case.to_string(), scene.to_string(), text));
-    }
+    let references = stored_references(&manifest.join("references"), &cases);
     assert!(!cases.is_empty() && !references.is_empty());
     Base {
         cases,
