@@ -10,8 +10,10 @@
 //!   (`control = true` in the case file: a result known by construction, such as a chart that
 //!   is exact on it); a variant that is `n/a`, failed at every point reaching `e`, or never
 //!   reaches `e` on one of them is out;
-//! - the cheapest wins; ties go to the earlier variant in the family's order; the runner-up
-//!   and the ratio of its cost to the winner's (`gap`) are given;
+//! - the cheapest wins; the runner-up and the ratio of its cost to the winner's (`gap`) are
+//!   given; every variant whose ranking cost is within `TIE_REL` (5 %) of the winner's is a
+//!   tie with it (`tie`, in cost order; the winner is then only the first of equals, the
+//!   earlier in the family's order on equal costs), and the advice says "tie" and names them;
 //! - a second ranking by median wall time (the sum of the chosen runs' medians) is given when
 //!   every chosen run of the work winner took more than 10 ms (`MIN_TIMED_S`); below, timer
 //!   noise decides and the advice says so instead.
@@ -27,7 +29,7 @@
 //! slopes spread by more than 1).
 //!
 //! The JSON (`--json`, schema 1; docs/schemas.md, "advise --json"): `{schema, by, cases: [{case,
-//! metric, unit, scenes, controls, targets: [{target, winner, runner_up, gap, by_time, note}],
+//! metric, unit, scenes, controls, targets: [{target, winner, runner_up, gap, tie, by_time, note}],
 //! skipped_targets: [{target, reason}], avoid: [{param, integrator, formulation, scene,
 //! reason}], robustness: [{scene, param, integrator, formulation, stable, accurate,
 //! limited_by}]}]}` (`stable`, `accurate`: `{dt}` or `{tol}` or null) where a pick is
@@ -89,6 +91,11 @@ pub const CLAIM_MARGIN: f64 = 100.0;
 
 /// Wall times are ranked only when every chosen run of the work winner took longer (s).
 pub const MIN_TIMED_S: f64 = 0.01;
+
+/// Picks whose ranking cost (work, or wall time with `--by time`) lies within this fraction
+/// of the winner's are a tie with it: the advice names them all as tied, not the first as
+/// the winner "x1.00" ahead (docs/schemas.md, "advise --json": `tie`).
+pub const TIE_REL: f64 = 0.05;
 
 /// Below this conditioning a chart is listed to avoid.
 pub const MIN_CONDITIONING: f64 = 1e-3;
@@ -204,6 +211,9 @@ pub struct TargetAdvice {
     pub runner_up: Option<Pick>,
     /// Runner-up's cost / winner's cost.
     pub gap: Option<f64>,
+    /// The variants after the winner whose ranking cost is within [`TIE_REL`] of the
+    /// winner's, in cost order (empty: the winner stands alone).
+    pub tie: Vec<Pick>,
     /// The winner by median wall time, when the work winner's runs are long enough to time.
     pub by_time: Option<Pick>,
     /// Why something is absent (no variant reaches the target, runs too short to time).

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 
 use super::TargetAdvice;
-use super::{By, CLAIM_MARGIN, CaseSpec, MIN_TIMED_S, Pick, SceneSpec, Setting, Skipped};
+use super::{By, CLAIM_MARGIN, CaseSpec, MIN_TIMED_S, Pick, SceneSpec, Setting, Skipped, TIE_REL};
 use crate::summary::{Record, Status};
 
 /// A variant's runs grouped by scene, keyed by the family's variant order.
@@ -140,6 +140,16 @@ fn rank(
         (Some(w), Some(r)) if primary(w) > 0.0 => Some(primary(r) / primary(w)),
         _ => None,
     };
+    let tie: Vec<Pick> = match &winner {
+        Some(w) => picks
+            .iter()
+            .skip(1)
+            .map(|p| &p.0)
+            .take_while(|p| primary(p) <= (1.0 + TIE_REL) * primary(w))
+            .cloned()
+            .collect(),
+        None => vec![],
+    };
     let mut note = None;
     if winner.is_none() {
         note = Some(if scenes.is_empty() {
@@ -181,6 +191,7 @@ fn rank(
         winner,
         runner_up,
         gap,
+        tie,
         by_time,
         note,
     }

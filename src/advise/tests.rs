@@ -285,3 +285,43 @@ fn avoid_non_asymptotic_fits() {
         fits[0].reason
     );
 }
+
+/// Variants whose ranking cost lies within `TIE_REL` of the winner's are a tie with it, in
+/// cost order, and the text says "tie" and names them all; one just outside is the
+/// runner-up only; with `--by time` the tie is decided by wall time, not work.
+#[test]
+fn close_costs_are_a_tie() {
+    let s = summary(vec![
+        // so3: 200; quat: 208 (4 % dearer); euler_xyz: 211 (5.5 % dearer).
+        rec("a", "so3", "rk4", 1e-2, Some(1e-4), 100, 0.10),
+        rec("b", "so3", "rk4", 1e-2, Some(1e-4), 100, 0.10),
+        rec("a", "quat", "rk4", 1e-2, Some(1e-4), 104, 0.30),
+        rec("b", "quat", "rk4", 1e-2, Some(1e-4), 104, 0.30),
+        rec("a", "euler_xyz", "rk4", 1e-2, Some(1e-4), 105, 0.20),
+        rec("b", "euler_xyz", "rk4", 1e-2, Some(1e-4), 106, 0.20),
+    ]);
+    let a = advise(&s, &[spec(1e-12)], &Options::default());
+    let t = &a.cases[0].targets[0];
+    assert_eq!(t.winner.as_ref().unwrap().name(), "so3/rk4/body");
+    let tied: Vec<String> = t.tie.iter().map(|p| p.name()).collect();
+    assert_eq!(tied, ["quat/rk4/body"]);
+    assert_eq!(t.runner_up.as_ref().unwrap().name(), "quat/rk4/body");
+    let text = text::render(&a);
+    assert!(text.contains("tie: so3/rk4/body"), "{text}");
+    assert!(
+        text.contains("tied within 5 %: quat/rk4/body (cost 208, x1.04)"),
+        "{text}"
+    );
+    assert!(!text.contains("runner-up"), "{text}");
+    let json = serde_json::to_value(&a).unwrap();
+    assert_eq!(json["cases"][0]["targets"][0]["tie"][0]["param"], "quat");
+    // By wall time (0.2 s, 0.4 s, 0.6 s): so3 stands alone.
+    let by_time = Options {
+        by: By::Time,
+        ..Options::default()
+    };
+    let a = advise(&s, &[spec(1e-12)], &by_time);
+    let t = &a.cases[0].targets[0];
+    assert!(t.tie.is_empty(), "{:?}", t.tie);
+    assert!(text::render(&a).contains("runner-up euler_xyz/rk4/body x2.00"));
+}

@@ -1,11 +1,12 @@
 //! The recommendation as text, for the terminal (`mbdbench advise`, the end of the main job):
-//! per case one line per target (winner, its settings and cost, the runner-up and the gap,
-//! the wall-time winner or why there is none), the skipped targets, the robustness ranking
+//! per case one line per target (winner, its settings and cost, the runner-up and the gap, or
+//! "tie" and every variant within `TIE_REL` of the winner's cost, the wall-time winner or why
+//! there is none), the skipped targets, the robustness ranking
 //! (at most `ROBUST_LINES` lines), and the avoid list
 //! grouped by reason (at most `AVOID_LINES` lines per case, with the count of the rest).
 use std::fmt::Write;
 
-use super::{Advice, Pick, Setting};
+use super::{Advice, Pick, Setting, TIE_REL, TargetAdvice};
 
 /// Avoid lines shown per case (the JSON holds them all).
 pub const AVOID_LINES: usize = 8;
@@ -19,6 +20,30 @@ fn settings(p: &Pick) -> String {
         .map(|(scene, s)| match s {
             Setting::Dt(dt) => format!("{scene} dt={dt:e}"),
             Setting::Tol(tol) => format!("{scene} tol={tol:e}"),
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The variants tied with the winner, each with its ranking cost relative to the winner's
+/// (work, or median wall time when `by_time`).
+fn tied(t: &TargetAdvice, w: &Pick, by_time: bool) -> String {
+    let rank = |p: &Pick| {
+        if by_time {
+            p.wall_s.unwrap_or(f64::INFINITY)
+        } else {
+            p.cost as f64
+        }
+    };
+    t.tie
+        .iter()
+        .map(|p| {
+            let r = if rank(w) > 0.0 {
+                rank(p) / rank(w)
+            } else {
+                1.0
+            };
+            format!("{} (cost {}, x{r:.2})", p.name(), p.cost)
         })
         .collect::<Vec<_>>()
         .join(", ")
@@ -54,14 +79,22 @@ pub fn render(a: &Advice) -> String {
             match &t.winner {
                 Some(w) => {
                     let mut line = format!(
-                        "  <= {:e}: {} (cost {}{}; {})",
+                        "  <= {:e}: {}{} (cost {}{}; {})",
                         t.target,
+                        if t.tie.is_empty() { "" } else { "tie: " },
                         w.name(),
                         w.cost,
                         w.wall_s.map_or(String::new(), |s| format!(", {s:.3} s")),
                         settings(w)
                     );
-                    if let (Some(r), Some(g)) = (&t.runner_up, t.gap) {
+                    if !t.tie.is_empty() {
+                        let within = TIE_REL * 1e2;
+                        let _ = write!(
+                            line,
+                            "; tied within {within:.0} %: {}",
+                            tied(t, w, a.by == "time")
+                        );
+                    } else if let (Some(r), Some(g)) = (&t.runner_up, t.gap) {
                         let _ = write!(line, "; runner-up {} x{g:.2}", r.name());
                     }
                     if let Some(b) = &t.by_time {
