@@ -396,6 +396,14 @@ pub fn run_catalogue(
     };
     let text = summary.to_json_lines().map_err(|e| e.to_string())?;
     staging.write("summary.json", text.as_bytes())?;
+    // A stability study beside the old summary that is not of this build and selection
+    // would be judged beside this run: it goes with the old output (unusable, too).
+    let beside = crate::gate::stability_beside(&opts.out.join("summary.json"));
+    if !matches!(&beside, Ok(None))
+        && !matches!(&beside, Ok(Some(st)) if summary.pairs_with(st).is_ok())
+    {
+        staging.replace(output::Writer::Stability);
+    }
     staging.commit()?;
     Ok(summary)
 }

@@ -214,6 +214,49 @@ pub struct Summary {
 }
 
 impl Summary {
+    /// Whether `stability` (a `stability.json`) belongs with this summary: made by the same
+    /// build (`git_commit`) for the same selection's filters (cases, scenes, variants,
+    /// `--t-end`). The tiers may differ: a study's tier is its own search depth (the main
+    /// job pairs the full run with the quick study). Otherwise the pair would judge one
+    /// build's stability study beside another build's results or another subset: an error
+    /// naming both stamps.
+    pub fn pairs_with(&self, stability: &Summary) -> Result<(), String> {
+        let stamp = |s: &Summary| {
+            let sel = match &s.selection {
+                Some(sel) => {
+                    let f = sel.flags();
+                    format!(
+                        "{} tier{}",
+                        sel.tier.name(),
+                        if f.is_empty() {
+                            String::new()
+                        } else {
+                            format!(", {f}")
+                        }
+                    )
+                }
+                None => "no selection".into(),
+            };
+            format!("commit {}, {sel}", s.git_commit)
+        };
+        let filters = |s: &Summary| {
+            s.selection.as_ref().map(|sel| crate::selection::Selection {
+                tier: crate::selection::Tier::Full,
+                ..sel.clone()
+            })
+        };
+        if self.git_commit == stability.git_commit && filters(self) == filters(stability) {
+            return Ok(());
+        }
+        Err(format!(
+            "stability.json ({}) is not of the run of summary.json ({}): a stability study is \
+             judged only beside the run of the same build and selection; run `mbdbench \
+             stability` with the run's options into the same folder, or remove stability.json",
+            stamp(stability),
+            stamp(self)
+        ))
+    }
+
     /// The summary as JSON with one record (and one fit) per line: the header fields
     /// indented, each record compact on a line of its own, so a run is one `grep` away and a
     /// diff shows the runs that changed; a quarter smaller than two-space indentation

@@ -407,9 +407,14 @@ fn cmd_report(
     // `--quick` for a quick summary) on the same files.
     opts.quick = crate::gate::summary_tier(&cases, &summary) == crate::selection::Tier::Quick;
     // stability.json beside the summary: its part of the report; unusable = a warning.
-    let (stability, warning) = crate::report::stability::load_beside(summary_path);
+    let (mut stability, warning) = crate::report::stability::load_beside(summary_path);
     if let Some(w) = warning {
         crate::tell!("{w}");
+    }
+    // A study of another build or selection is left out, never drawn beside this run.
+    if let Some(Err(e)) = stability.as_ref().map(|st| summary.pairs_with(st)) {
+        crate::tell!("warning: {e}; the report is written without the stability study");
+        stability = None;
     }
     let rows = match crate::gate::evaluate(&cases, &summary, stability.as_ref(), &opts) {
         Ok(rows) => Some(rows),
@@ -487,7 +492,8 @@ fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
     }
     let summary = crate::gate::load_summary(&a.summary).map_err(|e| e.to_string())?;
     crate::gate::check_tier(&summary, &a.summary, a.quick).map_err(|e| e.to_string())?;
-    let stability = crate::gate::stability_beside(&a.summary).map_err(|e| e.to_string())?;
+    let stability =
+        crate::gate::stability_paired(&a.summary, &summary).map_err(|e| e.to_string())?;
     let opts = crate::gate::GateOptions {
         quick: a.quick,
         baseline: a.baseline.clone(),
@@ -543,7 +549,8 @@ fn cmd_advise(common: &Common, a: &AdviseArgs) -> Result<i32, String> {
         }
     }
     let summary = crate::gate::load_summary(&a.summary).map_err(|e| e.to_string())?;
-    let stability = crate::gate::stability_beside(&a.summary).map_err(|e| e.to_string())?;
+    let stability =
+        crate::gate::stability_paired(&a.summary, &summary).map_err(|e| e.to_string())?;
     let opts = crate::advise::Options {
         stability,
         cases: a.case.clone(),

@@ -27,6 +27,29 @@ pub fn stability_beside(summary_path: &Path) -> Result<Option<Summary>, GateErro
     }
 }
 
+/// `stability.json` beside `summary_path` when it belongs with `summary` (the same build and
+/// selection, `Summary::pairs_with`); one that does not is an error naming both stamps,
+/// never a study judged beside another build's run.
+pub fn stability_paired(
+    summary_path: &Path,
+    summary: &Summary,
+) -> Result<Option<Summary>, GateError> {
+    let Some(st) = stability_beside(summary_path)? else {
+        return Ok(None);
+    };
+    summary
+        .pairs_with(&st)
+        .map_err(|message| GateError::Unreadable {
+            what: "stability summary",
+            path: summary_path
+                .with_file_name("stability.json")
+                .display()
+                .to_string(),
+            message,
+        })?;
+    Ok(Some(st))
+}
+
 /// Reads a file in the summary's schema, checked against its folder's manifest when it has
 /// one; `what` names it in errors.
 pub(crate) fn load_as(path: &Path, what: &'static str) -> Result<Summary, GateError> {

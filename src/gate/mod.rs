@@ -54,7 +54,7 @@ pub mod validate;
 #[cfg(test)]
 mod fixture;
 
-pub use load::{load_summary, stability_beside};
+pub use load::{load_summary, stability_beside, stability_paired};
 pub use regression::{DEFAULT_FACTOR, compare_baseline, is_baseline_row, update_baseline};
 pub use table::{exit_code, print_table, print_verdict, skipped_by_reason, verdict_line};
 pub use validate::known_metrics;
@@ -592,14 +592,13 @@ pub fn evaluate(
     }
     if let Some(path) = &opts.baseline {
         let base = regression::load_baseline(path)?;
-        rows.extend(compare_baseline(
-            cases,
-            summary,
-            &base,
-            path,
-            &opts.references,
-            opts.factor,
-        )?);
+        // `--case` and `--scene` filter the comparison as they filter the gates: every row
+        // of it is keyed by one case and scene.
+        rows.extend(
+            compare_baseline(cases, summary, &base, path, &opts.references, opts.factor)?
+                .into_iter()
+                .filter(|r| wanted(&opts.cases, &r.key.case) && wanted(&opts.scenes, &r.key.scene)),
+        );
     }
     Ok(rows)
 }

@@ -46,6 +46,15 @@ impl Writer {
     pub fn derives_from(self, other: Writer) -> bool {
         self == Writer::Report && other != Writer::Report
     }
+
+    /// The command that writes this writer's files.
+    pub fn command(self) -> &'static str {
+        match self {
+            Writer::Run => "run",
+            Writer::Stability => "stability",
+            Writer::Report => "report",
+        }
+    }
 }
 
 /// One file of the manifest.
@@ -110,11 +119,7 @@ impl Manifest {
         Err(format!(
             "{rel} changed after `mbdbench {}` wrote the folder ({} bytes now, {} in {MANIFEST}): \
              the folder may mix two runs; rerun the command into it",
-            match e.writer {
-                Writer::Run => "run",
-                Writer::Stability => "stability",
-                Writer::Report => "report",
-            },
+            e.writer.command(),
             bytes.len(),
             e.bytes
         ))

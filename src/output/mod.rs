@@ -65,6 +65,8 @@ pub struct Staging {
     writer: Writer,
     /// The files written so far.
     manifest: Manifest,
+    /// Other writers whose old files the commit drops as well (`replace`).
+    replaced: Vec<Writer>,
     /// The staging folder no longer exists or is no longer ours to remove.
     done: bool,
 }
@@ -94,6 +96,7 @@ impl Staging {
             dir,
             writer,
             manifest: Manifest::default(),
+            replaced: vec![],
             done: false,
         })
     }
@@ -101,6 +104,12 @@ impl Staging {
     /// The output folder the commit will fill.
     pub fn out(&self) -> &Path {
         &self.out
+    }
+
+    /// Drops the old files of `other` at the commit too (a run drops a `stability.json`
+    /// that is not of its build and selection: `Summary::pairs_with`).
+    pub fn replace(&mut self, other: Writer) {
+        self.replaced.push(other);
     }
 
     /// Writes the file `rel` (`/`-separated, inside the folder) of the new output.
@@ -129,8 +138,10 @@ impl Staging {
         Ok(())
     }
 
-    /// Makes the new output the folder's content (see the module's steps 2 to 4).
-    pub fn commit(mut self) -> Result<(), String> {
+    /// Makes the new output the folder's content (see the module's steps 2 to 4). Returns
+    /// the other writers' old files it dropped (the report made from the old output, and
+    /// those of `replace`), by their first path component, for the writer to say so.
+    pub fn commit(mut self) -> Result<Vec<String>, String> {
         fault("staged");
         let old = match std::fs::symlink_metadata(&self.out) {
             Ok(m) if m.is_dir() => true,
@@ -142,6 +153,7 @@ impl Staging {
             }
             Err(_) => false,
         };
+        let mut dropped = vec![];
         if old {
             let previous = Manifest::load(&self.out).unwrap_or_else(|e| {
                 crate::tell!("warning: {e}: every file of the folder is kept as the user's");
@@ -149,11 +161,28 @@ impl Staging {
             });
             let previous = previous.unwrap_or_default();
             let writer = self.writer;
+            let gone = |w: Writer| w.derives_from(writer) || self.replaced.contains(&w);
             let keep = |rel: &str| match previous.files.get(rel) {
                 _ if rel == MANIFEST => Keep::No,
-                Some(e) if e.writer == writer || e.writer.derives_from(writer) => Keep::No,
+                Some(e) if e.writer == writer || gone(e.writer) => Keep::No,
                 _ => Keep::Yes,
             };
+            for (rel, e) in &previous.files {
+                let top = rel.split('/').next().unwrap_or(rel);
+                let top = if top.len() < rel.len() {
+                    format!("{top}/")
+                } else {
+                    top.into()
+                };
+                if e.writer != writer
+                    && gone(e.writer)
+                    && !dropped
+                        .iter()
+                        .any(|d: &(Writer, String)| d.0 == e.writer && d.1 == top)
+                {
+                    dropped.push((e.writer, top));
+                }
+            }
             let carried = swap::carry_over(&self.out, &self.dir, &keep)?;
             for rel in carried {
                 if let Some(e) = previous.files.get(&rel) {
@@ -172,7 +201,34 @@ impl Staging {
         let _ = std::fs::remove_dir_all(&self.dir);
         interrupt::unregister(&self.dir);
         self.done = true;
-        Ok(())
+        Ok(self.say_dropped(dropped))
+    }
+
+    /// Says which of the other writers' old files the commit removed, and what remakes them.
+    fn say_dropped(&self, dropped: Vec<(Writer, String)>) -> Vec<String> {
+        for w in [Writer::Run, Writer::Stability, Writer::Report] {
+            let files: Vec<&str> = dropped
+                .iter()
+                .filter(|d| d.0 == w)
+                .map(|d| d.1.as_str())
+                .collect();
+            if files.is_empty() {
+                continue;
+            }
+            let why = if w.derives_from(self.writer) {
+                "made from the files this replaces"
+            } else {
+                "not of this run's build and selection"
+            };
+            crate::tell!(
+                "{}: removed {} ({why}; `mbdbench {}` remakes {})",
+                self.out.display(),
+                files.join(", "),
+                w.command(),
+                if files.len() == 1 { "it" } else { "them" }
+            );
+        }
+        dropped.into_iter().map(|d| d.1).collect()
     }
 
     /// The new folder into place: exchanged with the old one, or renamed when there is none
