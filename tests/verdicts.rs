@@ -1,5 +1,6 @@
 //! The gate's verdict through the binary, as a pull request meets it: `--case` and
-//! `--scene` filter the baseline comparison as they filter the gates; a summary and a
+//! `--scene` filter the baseline comparison as they filter the gates; the report and
+//! `summary.md` give the verdict of `gate --baseline`, in `gate --markdown`'s words; a summary and a
 //! `stability.json` of different selections are never judged together (the gate and
 //! `advise` refuse the pair naming both stamps, the report leaves the study out, a `run`
 //! into the folder removes the stale study and says so); and a `stability` into a folder
@@ -24,7 +25,8 @@ fn s(p: &Path) -> &str {
 /// comparison included, is of the selected case (and scene): against a baseline in which
 /// every run of `free_body` and of the scene `large` took half the RHS evaluations (each a
 /// regression row), the unfiltered gate prints rows of both, `--case nine_spring` none of
-/// `free_body`, and `--scene two_angles` none of `large`.
+/// `free_body`, and `--scene two_angles` none of `large`. `report --baseline` gives the
+/// same verdict on the page and in `summary.md`, whose gate block is `gate --markdown`'s.
 #[test]
 fn case_and_scene_filter_the_baseline_comparison() {
     let out = common::temp_dir("verdict-filter");
@@ -89,6 +91,35 @@ fn case_and_scene_filter_the_baseline_comparison() {
     assert_eq!(code, Some(0), "{scene}");
     assert!(!has(&scene, "nine_spring", "large"), "{scene}");
     assert!(has(&scene, "nine_spring", "two_angles"), "{scene}");
+    // The report with the same baseline gives the gate's verdict on the page and in
+    // summary.md, whose gate block is `gate --markdown`'s, byte for byte.
+    let last = all.lines().last().unwrap().to_string();
+    assert!(last.contains("4 failed"), "{all}");
+    let o = mbdbench(&["report", "--summary", s(&summary), "--baseline", s(&b)]);
+    assert_eq!(o.status.code(), Some(0), "{}", common::text(&o));
+    let page = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(page.contains(&format!("<b>Gates:</b> {last}.")), "{last}");
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    let o = mbdbench(&[
+        "gate",
+        "--summary",
+        s(&summary),
+        "--quick",
+        "--baseline",
+        s(&b),
+        "--markdown",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let block = String::from_utf8(o.stdout).unwrap();
+    assert!(block.starts_with(&format!("**Gates: {last}.**")), "{block}");
+    assert!(
+        block.contains("| integrator | rk4 | 4 | x2.000 |"),
+        "{block}"
+    );
+    assert!(
+        md.contains(&block),
+        "summary.md:\n{md}\ngate --markdown:\n{block}"
+    );
     let _ = std::fs::remove_dir_all(&out);
     let _ = std::fs::remove_file(&b);
 }

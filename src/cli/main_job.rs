@@ -32,7 +32,7 @@ pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> 
         return Ok(code);
     }
     let summary = out.join("summary.json");
-    let code = cmd_report(common, &summary, None, false)?;
+    let code = cmd_report(common, &summary, None, false, None)?;
     if code != EXIT_OK {
         return Ok(code);
     }
@@ -60,6 +60,7 @@ pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> 
             scene: vec![],
             require_stability: true,
             verdict_only: true,
+            markdown: false,
         },
     )?;
     crate::say!(

@@ -92,6 +92,11 @@ pub enum Command {
         /// inlines them all either way).
         #[arg(long)]
         svg: bool,
+        /// An earlier summary the page's and summary.md's gate verdict compares with, as
+        /// `gate --baseline` does (default: the committed reports/baseline/quick.json for a
+        /// quick-tier summary, none for a full one)
+        #[arg(long)]
+        baseline: Option<PathBuf>,
     },
     /// The recommendation: per case and target error, the cheapest variant reaching it on
     /// every non-control scene, its runner-up, and what to avoid and why.
@@ -201,6 +206,10 @@ pub struct GateArgs {
     /// Print only the failing rows, the skipped ones by reason and the verdict line.
     #[arg(long)]
     pub verdict_only: bool,
+    /// Print the verdict as Markdown (a pull-request comment): the block summary.md opens
+    /// with, rolled up by integrator, chart, case and metric, within 60 KB.
+    #[arg(long, conflicts_with = "verdict_only")]
+    pub markdown: bool,
 }
 
 #[derive(Debug, Args, Clone)]
@@ -268,6 +277,9 @@ pub const EXIT_FAILED: i32 = 1;
 pub const EXIT_BAD_INPUT: i32 = 2;
 
 /// The default references folder: `references/` of the source tree.
+/// The committed baseline of the quick tier, relative to the source tree.
+pub const DEFAULT_BASELINE: &str = "reports/baseline/quick.json";
+
 pub fn default_references() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("references")
 }
@@ -327,9 +339,12 @@ pub fn execute(cli: Cli) -> i32 {
         Some(Command::Trajectory(a)) => cmd_trajectory(&common, &a),
         Some(Command::Gate(a)) => cmd_gate(&common, &a),
         Some(Command::Advise(a)) => cmd_advise(&common, &a),
-        Some(Command::Report { summary, out, svg }) => {
-            cmd_report(&common, &summary, out.as_deref(), svg)
-        }
+        Some(Command::Report {
+            summary,
+            out,
+            svg,
+            baseline,
+        }) => cmd_report(&common, &summary, out.as_deref(), svg, baseline.as_deref()),
         Some(Command::Reference { case, scene, check }) => {
             cmd_reference(&common, &case, scene.as_deref(), check)
         }
@@ -393,6 +408,7 @@ fn cmd_report(
     summary_path: &std::path::Path,
     out: Option<&std::path::Path>,
     svg: bool,
+    baseline: Option<&std::path::Path>,
 ) -> Result<i32, String> {
     let cases = load_cases(common)?;
     let summary = crate::gate::load_summary(summary_path).map_err(|e| e.to_string())?;
@@ -406,6 +422,13 @@ fn cmd_report(
     // The gates of the summary's tier: the page's verdict is `mbdbench gate`'s (with
     // `--quick` for a quick summary) on the same files.
     opts.quick = crate::gate::summary_tier(&cases, &summary) == crate::selection::Tier::Quick;
+    // The comparison `gate --baseline` makes, so the page and summary.md give its verdict:
+    // the committed quick baseline by default for a quick summary.
+    let committed = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(DEFAULT_BASELINE);
+    opts.baseline = match baseline {
+        Some(b) => Some(b.to_path_buf()),
+        None => (opts.quick && committed.is_file()).then_some(committed),
+    };
     // stability.json beside the summary: its part of the report; unusable = a warning.
     let (mut stability, warning) = crate::report::stability::load_beside(summary_path);
     if let Some(w) = warning {
@@ -466,7 +489,7 @@ fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
         let target = a
             .baseline
             .clone()
-            .unwrap_or_else(|| PathBuf::from("reports/baseline/quick.json"));
+            .unwrap_or_else(|| PathBuf::from(DEFAULT_BASELINE));
         crate::gate::update_baseline(&a.summary, &target).map_err(|e| e.to_string())?;
         crate::say!(
             "baseline {} rewritten from {}",
@@ -506,7 +529,10 @@ fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
     let rows = crate::gate::evaluate(&cases, &summary, stability.as_ref(), &opts)
         .map_err(|e| e.to_string())?;
     let mut out = crate::quiet::Stdout;
-    if a.verdict_only {
+    if a.markdown {
+        use std::io::Write;
+        write!(out, "{}", crate::gate::markdown::verdict(&rows)).map_err(|e| e.to_string())?;
+    } else if a.verdict_only {
         crate::gate::print_verdict(&rows, &mut out).map_err(|e| e.to_string())?;
     } else {
         crate::gate::print_table(&rows, &mut out).map_err(|e| e.to_string())?;

@@ -187,7 +187,7 @@ pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf
     );
     // The report that was there described the old summary: made again from the new one.
     if had_report {
-        cmd_report(common, &out.join("summary.json"), None, false)?;
+        cmd_report(common, &out.join("summary.json"), None, false, None)?;
     }
     Ok((EXIT_OK, out))
 }

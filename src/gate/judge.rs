@@ -70,6 +70,11 @@ pub(super) fn judge_bound(row: &mut GateRow, r: &Record, metric: &str, bound: Bo
         Bound::Max(t) => x <= t,
         Bound::Min(t) => x >= t,
     };
+    row.ratio = match bound {
+        Bound::Max(t) if t > 0.0 => Some(x / t),
+        Bound::Min(t) if x > 0.0 => Some(t / x),
+        _ => None,
+    };
     if pass {
         row.verdict = Verdict::Pass;
     } else {

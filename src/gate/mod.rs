@@ -47,6 +47,7 @@ use judge::{check_label, judge_bound, judge_expect, outcome_text, threshold_text
 
 mod judge;
 pub mod load;
+pub mod markdown;
 pub mod regression;
 pub mod table;
 pub mod validate;
@@ -94,6 +95,12 @@ pub struct GateRow {
     pub verdict: Verdict,
     /// Why it failed (stale reference, no record, null metric, regression ...), or empty.
     pub note: String,
+    /// How far the value lies from the number its threshold names, as a factor: value /
+    /// bound for an upper bound (bound / value for a lower one), value / baseline for a
+    /// baseline comparison; above 1 past it. None where there is no such number (no record,
+    /// an expected failure, a stale scene).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub ratio: Option<f64>,
 }
 
 /// The deterministic work counters of a record (`stats`) a gate may name.
@@ -678,6 +685,7 @@ fn judge(
         threshold: threshold_text(&g.check),
         verdict: Verdict::Fail,
         note: String::new(),
+        ratio: None,
     };
     let Some(r) = rec else {
         row.note = format!(

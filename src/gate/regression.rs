@@ -85,6 +85,7 @@ fn row(r: &Record, metric: &str, value: Option<f64>, threshold: String) -> GateR
         threshold,
         verdict: Verdict::Pass,
         note: String::new(),
+        ratio: None,
     }
 }
 
@@ -100,6 +101,7 @@ fn scene_row(case: &str, scene: &str, metric: &str, threshold: &str, note: Strin
         threshold: threshold.into(),
         verdict: Verdict::Fail,
         note,
+        ratio: None,
     }
 }
 
@@ -182,6 +184,7 @@ pub fn compare_baseline(
                         continue;
                     }
                     let mut x = row(r, m, Some(new), format!("<= {factor} x baseline {old:e}"));
+                    x.ratio = Some(new / old);
                     if new > factor * old {
                         x.verdict = Verdict::Fail;
                         x.note = format!(
@@ -202,6 +205,7 @@ pub fn compare_baseline(
                 continue;
             }
             let mut x = row(r, m, Some(new), format!("<= {WORK_SLACK} x baseline {old}"));
+            x.ratio = (old > 0.0).then(|| new / old);
             if new > WORK_SLACK * old {
                 x.verdict = Verdict::Fail;
                 x.note = if old > 0.0 {

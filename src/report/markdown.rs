@@ -5,8 +5,8 @@
 //! typed failures by kind, its gates) pointing to its section of `index.html`, which holds
 //! every table and plot. Long tables fold in `<details>` blocks; a shortened cell is written
 //! in full; gate colours become `[pass]` / `[FAIL]` after the value.
+use super::Page;
 use super::tables::{Table, Tone};
-use super::{CaseSection, Page};
 
 /// Makes text inert for a Markdown renderer, as `index.html` escapes it: a `<` that would open
 /// a tag, a comment, a declaration or an autolink (followed by a letter, `/`, `!` or `?`) and an
@@ -89,24 +89,8 @@ pub fn table(t: &Table, open_below: usize) -> String {
     s
 }
 
-/// The failing rows of a case's gate table (None: no gates, or none failed).
-fn failing_gates(c: &CaseSection) -> Option<Table> {
-    let g = c.gates.as_ref()?;
-    let rows: Vec<_> = g
-        .rows
-        .iter()
-        .filter(|r| r.iter().any(|x| x.tone == Tone::Fail))
-        .cloned()
-        .collect();
-    (!rows.is_empty()).then(|| Table {
-        rows,
-        title: format!("{}: failing gates", c.name),
-        ..g.clone()
-    })
-}
-
-/// The whole document: the environment, the gate verdict (and the failing rows), the
-/// recommendation, and one line per case pointing to its section of `index.html`.
+/// The whole document: the environment, the gate verdict (`gate::markdown`: the roll-up and
+/// the failing rows), the recommendation, and one line per case pointing to its section of `index.html`.
 pub fn render(page: &Page) -> String {
     // The environment comes from the summary (a hand-edited one too): kept on its line and
     // inside its code span.
@@ -115,14 +99,8 @@ pub fn render(page: &Page) -> String {
         .replace(|c: char| c.is_control() || c == '`', " ");
     let mut s = format!("# mbdbench report\n\n`{env}`\n\n");
     if let Some(g) = &page.gate_summary {
-        s.push_str(&format!("**Gates: {}.**", text(&g.line)));
-        for (why, k) in &g.skipped {
-            s.push_str(&format!(" Skipped {k}: {}.", text(why)));
-        }
-        s.push_str("\n\n");
-    }
-    for t in page.cases.iter().filter_map(failing_gates) {
-        s.push_str(&table(&t, 40));
+        s.push_str(&g.markdown);
+        s.push('\n');
     }
     if let Some(a) = &page.advice {
         s.push_str(&super::advice::markdown(a));

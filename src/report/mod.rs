@@ -136,6 +136,9 @@ pub struct GateSummary {
     pub failed: usize,
     /// (reason, rows) of the skipped rows.
     pub skipped: Vec<(String, usize)>,
+    /// The verdict as Markdown (`gate::markdown`, the one renderer of `summary.md`'s block
+    /// and `gate --markdown`).
+    pub markdown: String,
 }
 
 impl GateSummary {
@@ -144,6 +147,7 @@ impl GateSummary {
             line: crate::gate::verdict_line(rows),
             failed: rows.iter().filter(|r| r.verdict == Verdict::Fail).count(),
             skipped: crate::gate::skipped_by_reason(rows),
+            markdown: crate::gate::markdown::verdict(rows),
         }
     }
 }

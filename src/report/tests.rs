@@ -248,6 +248,7 @@ fn gate(scene: &str, dt: f64, metric: &str, verdict: Verdict) -> GateRow {
         threshold: "<= 1".into(),
         verdict,
         note: String::new(),
+        ratio: Some(1.0),
     }
 }
 
@@ -267,6 +268,7 @@ fn expect_gate_renders() {
         threshold: "before 0.55 s".into(),
         verdict,
         note: String::new(),
+        ratio: None,
     };
     let mut late = expect(1e-2, "singular_chart at t = 0.6", Verdict::Fail);
     late.note = "singular_chart at t = 0.6, too late: expected singular_chart before 0.55 s".into();
@@ -360,12 +362,13 @@ fn gate_colours() {
     let html = html::render(&page);
     assert!(html.contains("<td class=\"pass\">") && html.contains("<td class=\"fail\">"));
     let md = markdown::render(&page);
-    // summary.md lists the failing rows only.
+    // summary.md lists the failing rows only, in the gate's own Markdown block.
     assert!(
-        md.contains(": failing gates") && md.contains("| FAIL |"),
+        md.contains("| energy_drift_max | 1.000 | &lt;= 1 |"),
         "{md}"
     );
-    assert!(!md.contains("| pass |"), "{md}");
+    assert!(!md.contains("dt=0.005000"), "{md}");
+    assert!(md.contains(&crate::gate::markdown::verdict(&rows)), "{md}");
     assert!(md.contains("Gates: 1 passed, 1 failed, 0 skipped."));
     // Without gate rows nothing is coloured.
     let plain = build_page(&s, &dir, &[], None, None);
