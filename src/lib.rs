@@ -33,6 +33,7 @@ pub mod model;
 pub mod output;
 pub mod plan;
 pub mod problem;
+pub mod progress;
 pub mod quiet;
 pub mod read_limited;
 pub mod reference;

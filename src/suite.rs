@@ -177,55 +177,6 @@ pub fn time_run(p: &dyn Problem, v: &Variant, value: f64, repeats: usize) -> Opt
     })
 }
 
-/// Progress of a pass: a bar on a terminal, plain lines every 5 % otherwise.
-struct Progress {
-    bar: Option<indicatif::ProgressBar>,
-    total: usize,
-    done: std::sync::atomic::AtomicUsize,
-    label: &'static str,
-    enabled: bool,
-}
-
-impl Progress {
-    fn new(total: usize, label: &'static str, enabled: bool) -> Self {
-        use std::io::IsTerminal;
-        let bar = (enabled && std::io::stderr().is_terminal()).then(|| {
-            let b = indicatif::ProgressBar::new(total as u64);
-            b.set_message(label);
-            if let Ok(style) = indicatif::ProgressStyle::with_template(
-                "  {msg:<8} [{bar:40}] {pos}/{len} ({elapsed}, eta {eta})",
-            ) {
-                b.set_style(style.progress_chars("=> "));
-            }
-            b
-        });
-        Progress {
-            bar,
-            total,
-            done: std::sync::atomic::AtomicUsize::new(0),
-            label,
-            enabled,
-        }
-    }
-    fn tick(&self) {
-        let n = self.done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        match &self.bar {
-            Some(b) => b.inc(1),
-            None if self.enabled
-                && (n.is_multiple_of((self.total / 20).max(1)) || n == self.total) =>
-            {
-                crate::tell!("  {} {n}/{} runs", self.label, self.total);
-            }
-            None => {}
-        }
-    }
-    fn finish(&self) {
-        if let Some(b) = &self.bar {
-            b.finish_and_clear();
-        }
-    }
-}
-
 fn base_record(p: &dyn Problem, param: &str, integrator: &str, formulation: &str) -> Record {
     let mut r = Record::new(
         RunKey::new(p.case(), p.scene(), param, integrator, formulation),
@@ -253,6 +204,7 @@ pub fn run_catalogue(
     filter: &VariantFilter,
     opts: &RunOptions,
 ) -> Result<Summary, String> {
+    let started = std::time::Instant::now();
     prepare(&mut problems, opts)?;
     let mut jobs: Vec<Job> = vec![];
     let mut records: Vec<Record> = vec![];
@@ -299,7 +251,7 @@ pub fn run_catalogue(
     };
     jobs.sort_by(|a, b| steps(b).total_cmp(&steps(a)));
     let total = jobs.len();
-    let progress = Progress::new(total, "results", opts.progress);
+    let progress = crate::progress::Progress::new(total, "results", "runs", 20, opts.progress);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.jobs.max(1))
         .build()
@@ -320,7 +272,7 @@ pub fn run_catalogue(
     // thread alone with `--serial-timing`. Two runs on two cores slow each other by about 1 %
     // (measured, README "Benchmarks").
     if opts.repeats > 0 {
-        let timing = Progress::new(total, "timing", opts.progress);
+        let timing = crate::progress::Progress::new(total, "timing", "runs", 20, opts.progress);
         // A failed run is not timed: its wall time says nothing about the method, and a run
         // that ends at its work budget would cost that budget again per repeat.
         let time_one = |job: &Job, d: &mut Done| {
@@ -385,11 +337,13 @@ pub fn run_catalogue(
             .unwrap_or_else(|| crate::selection::Selection::everything(selection.tier));
     }
     records.sort_by_key(Record::report_order);
+    let mut env = Env::current(opts.jobs, Some(opts.timing_mode()));
+    env.elapsed_s = Some(started.elapsed().as_secs_f64());
     let summary = Summary {
         schema: 1,
         git_commit: summary::git_commit().into(),
         created_utc: summary::now_utc(),
-        env: Env::current(opts.jobs, Some(opts.timing_mode())),
+        env,
         records,
         fits,
         selection: Some(selection),

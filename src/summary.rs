@@ -196,6 +196,10 @@ pub struct Env {
     /// or one worker) or `none` (no timing pass). Absent in summaries written before it.
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub timing: Option<String>,
+    /// s: the wall time of the whole command that wrote the file (its runs, timing pass and
+    /// writing). Absent in files written before it.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub elapsed_s: Option<f64>,
 }
 
 /// The whole summary.
@@ -419,6 +423,7 @@ impl Env {
             },
             threads,
             timing,
+            elapsed_s: None,
         }
     }
 }

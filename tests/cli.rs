@@ -255,7 +255,8 @@ fn diverging_and_over_budget_runs_are_typed_failures() {
     let _ = std::fs::remove_dir_all(&dir2);
 }
 
-/// Usage errors exit 2 and write nothing.
+/// Usage errors exit 2 and write nothing; `trajectory` names the valid names of a wrong one,
+/// and on success says what it wrote.
 #[test]
 fn usage_errors_exit_2() {
     let d = common::temp_dir("usage");
@@ -299,6 +300,55 @@ fn usage_errors_exit_2() {
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
         assert!(!f.exists());
     }
+    // `trajectory` refuses an unknown name listing the valid ones of its family and axis.
+    let traj = |scene: &str, param: &str, integ: &str| {
+        run(&[
+            "trajectory",
+            "--case",
+            "free_body",
+            "--scene",
+            scene,
+            "--param",
+            param,
+            "--integrator",
+            integ,
+            "--dt",
+            "0.01",
+            "--out",
+            f.to_str().unwrap(),
+        ])
+    };
+    for (o, says) in [
+        (
+            traj("gnii", "so3", "rk4"),
+            "--scene gnii: not a scene of case free_body (its scenes: gni",
+        ),
+        (
+            traj("gni", "so4", "rk4"),
+            "--param so4: not a name of the rigid_body family (valid: euler_xyz",
+        ),
+        (
+            traj("gni", "so3", "rk5"),
+            "--integrator rk5: not a name of the rigid_body family (valid: euler, rk4",
+        ),
+    ] {
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{}", stderr(&o));
+        assert!(!f.exists());
+    }
+    // On success it says what it wrote, and the file records the step, the units and the
+    // commit.
+    let o = traj("gni", "so3", "rk4");
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        said.starts_with(&format!("trajectory: {} (", f.display())),
+        "{said}"
+    );
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&f).unwrap()).unwrap();
+    assert_eq!(doc["dt"], 0.01);
+    assert_eq!(doc["units"]["omega_body"], "rad/s");
+    assert_eq!(doc["git_commit"], mbdbench::summary::git_commit());
 }
 
 /// `reference --check` recomputes every stored reference and passes within its claim.

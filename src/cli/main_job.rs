@@ -11,6 +11,7 @@ use super::*;
 pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> {
     let t0 = std::time::Instant::now();
     let args = RunArgs::default();
+    opening(common, &args.out, full_stability)?;
     // The folder the run wrote: `reports/latest`, or its sibling when that holds a run this
     // one may not replace (a quick-tier run: `run.rs`, `where_to_write`); every later step
     // reads and writes there, so the stability study, report and gate describe this run.
@@ -69,4 +70,50 @@ pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> 
         out.join("index.html").display()
     );
     Ok(code)
+}
+
+/// What the main job is about to do, said before it starts: the cases and scenes, how long
+/// the last full run in the folder took (when its summary says), that an interruption
+/// leaves nothing mixed, and the quicker first look.
+fn opening(common: &Common, out: &std::path::Path, full_stability: bool) -> Result<(), String> {
+    let cases = load_cases(common)?;
+    let scenes: usize = cases.iter().map(|c| c.scenes.len()).sum();
+    crate::say!(
+        "mbdbench: the main job: {} cases ({scenes} scenes), every registered variant on the \
+         full ladders, into {}; then the {} stability study, the report, the recommendation \
+         and the gates.",
+        cases.len(),
+        out.display(),
+        if full_stability { "full" } else { "quick" }
+    );
+    let last = crate::gate::load_summary(&out.join("summary.json")).ok();
+    let full = |s: &crate::summary::Summary| {
+        s.selection
+            .as_ref()
+            .is_some_and(|sel| sel.covers(&crate::selection::Selection::everything(sel.tier)))
+            && !crate::gate::is_quick_summary(&cases, s)
+    };
+    match last.as_ref().filter(|s| full(s)) {
+        Some(s) => crate::say!(
+            "  The last full run here: {} runs in {} (commit {}, {}).",
+            s.records.len(),
+            s.env
+                .elapsed_s
+                .map_or("a time it did not record".into(), |t| format!("{t:.0} s")),
+            s.git_commit,
+            s.created_utc
+        ),
+        None => crate::say!(
+            "  No full run in {} yet to time it by (README, \"Commands\", gives one \
+             measured on 2 cores).",
+            out.display()
+        ),
+    }
+    crate::say!(
+        "  Ctrl-C at any moment leaves {} as it was: nothing half-written, nothing mixed.\n  \
+         A first look takes about 35 s: `mbdbench run --quick`; `mbdbench --help` lists the \
+         commands.\n",
+        out.display()
+    );
+    Ok(())
 }

@@ -7,6 +7,17 @@ use super::*;
 
 pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
     let cases = load_cases(common)?;
+    if let Some(c) = cases.iter().find(|c| c.name == a.case)
+        && c.scene(&a.scene).is_none()
+    {
+        let known: Vec<&str> = c.scenes.iter().map(|s| s.name.as_str()).collect();
+        return Err(format!(
+            "--scene {}: not a scene of case {} (its scenes: {})",
+            a.scene,
+            a.case,
+            known.join(", ")
+        ));
+    }
     let mut p = plan::problems(
         &cases,
         std::slice::from_ref(&a.case),
@@ -16,6 +27,30 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
     .find(|p| p.case() == a.case && p.scene() == a.scene)
     .ok_or_else(|| format!("--scene {}: not in case {}", a.scene, a.case))?;
     let family = p.family();
+    // An unknown name on an axis is refused with the family's valid names, as `run` does.
+    for (flag, name, valid) in [
+        ("--param", a.param.as_deref(), family.axes.params),
+        (
+            "--integrator",
+            Some(a.integrator.as_str()),
+            family.axes.integrators,
+        ),
+        (
+            "--formulation",
+            a.formulation.as_deref(),
+            family.axes.formulations,
+        ),
+    ] {
+        if let Some(n) = name
+            && !valid.contains(&n)
+        {
+            return Err(format!(
+                "{flag} {n}: not a name of the {} family (valid: {})",
+                family.model,
+                valid.join(", ")
+            ));
+        }
+    }
     let param = match (&a.param, family.axes.params) {
         (Some(x), _) => x.clone(),
         (None, ["none"]) => "none".into(),
@@ -92,14 +127,27 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
     let out = p.run(v, stepping, Want::Trajectory)?;
     let mut doc: BTreeMap<&str, Field> = BTreeMap::new();
     for (k, x) in [
-        ("case", &a.case),
+        ("case", a.case.as_str()),
         ("scene", &a.scene),
         ("param", &param),
         ("integrator", &a.integrator),
         ("formulation", &formulation),
+        ("git_commit", crate::summary::git_commit()),
     ] {
-        doc.insert(k, Field::Value(x.as_str().into()));
+        doc.insert(k, Field::Value(x.into()));
     }
+    // The step or tolerance the run took, and each column's unit.
+    let (step_key, step) = match stepping {
+        Stepping::Dt(h) => ("dt", h),
+        Stepping::Tol(t) => ("tol", t),
+    };
+    doc.insert(step_key, Field::Value(step.into()));
+    let units: serde_json::Map<String, serde_json::Value> = family
+        .columns
+        .iter()
+        .map(|c| (c.name.to_string(), c.unit.into()))
+        .collect();
+    doc.insert("units", Field::Value(units.into()));
     let status = if out.failure.is_some() {
         "failed"
     } else {
@@ -120,6 +168,15 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
         serde_json::to_writer(w, &doc).map_err(std::io::Error::from)
     })
     .map_err(|e| format!("{}: {e}", a.out.display()))?;
+    let samples = out.columns.as_ref().map_or(0, |c| c.t.len());
+    crate::say!(
+        "trajectory: {} ({samples} samples of {}/{}/{param}/{}/{formulation} at {step_key} = \
+         {step:e})",
+        a.out.display(),
+        a.case,
+        a.scene,
+        a.integrator
+    );
     if let Some(f) = out.failure {
         crate::tell!(
             "run failed: {} at t = {}: {}",

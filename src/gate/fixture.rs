@@ -123,6 +123,7 @@ pub fn summary(records: Vec<Record>) -> Summary {
             profile: "test".into(),
             threads: 1,
             timing: None,
+            elapsed_s: None,
         },
         records,
         fits: vec![],

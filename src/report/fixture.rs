@@ -235,6 +235,7 @@ pub fn summary() -> Summary {
             profile: "release".into(),
             threads: 2,
             timing: None,
+            elapsed_s: None,
         },
         records,
         fits,

@@ -158,8 +158,9 @@ pub fn step_search(
 }
 
 /// Runs `search` on every job in parallel over `opts.jobs` threads, one job at a time per
-/// thread; each record gets the search's wall time, and progress goes to stderr every tenth
-/// of the jobs (`label`). Records in job order.
+/// thread; each record gets the search's wall time, and progress goes to stderr
+/// (`crate::progress`: a bar on a terminal, else a line every tenth of the jobs, `label`,
+/// with the elapsed time and an estimate of what remains). Records in job order.
 pub(crate) fn timed_searches<J: Sync>(
     jobs: &[J],
     opts: &StudyOptions,
@@ -172,8 +173,8 @@ pub(crate) fn timed_searches<J: Sync>(
         .build()
         .map_err(|e| e.to_string())?;
     let total = jobs.len();
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    Ok(pool.install(|| {
+    let progress = crate::progress::Progress::new(total, label, "searches", 10, opts.progress);
+    let records = pool.install(|| {
         jobs.par_iter()
             .with_max_len(1)
             .map(|j| {
@@ -181,14 +182,13 @@ pub(crate) fn timed_searches<J: Sync>(
                 let mut r = search(j);
                 let w = t0.elapsed().as_secs_f64();
                 r.wall_s = Some(crate::summary::Wall { min: w, median: w });
-                let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-                if opts.progress && (k.is_multiple_of((total / 10).max(1)) || k == total) {
-                    crate::tell!("  {label} {k}/{total} searches");
-                }
+                progress.tick();
                 r
             })
             .collect()
-    }))
+    });
+    progress.finish();
+    Ok(records)
 }
 
 /// The whole study: the step search on the case scenes, the stiffness ladder and the long

@@ -137,6 +137,7 @@ pub fn stability_summary() -> Summary {
             profile: "release".into(),
             threads: 2,
             timing: None,
+            elapsed_s: None,
         },
         records,
         fits,
