@@ -228,7 +228,7 @@ pub struct AdviseArgs {
     /// time.
     #[arg(long, default_value = "work", value_parser = ["work", "time"])]
     pub by: String,
-    /// Print the recommendation as JSON (schema: src/advise/mod.rs).
+    /// Print the recommendation as JSON (schema: docs/schemas.md, "advise --json").
     #[arg(long)]
     pub json: bool,
 }
