@@ -205,4 +205,20 @@ pub struct Figures {
     /// the failure (the beam's diverging `modal_linear`); otherwise failed runs are left out
     /// of the time-series plots (and their series files are not written).
     pub draw_failed: bool,
+    /// A family whose formulations differ in physics (the beam's modal, AIGC and FE forms)
+    /// declares the metric against its physical reference: the report's first screen ranks
+    /// the variants on it first (through `advise`, at `targets`), the primary metric's
+    /// time-discretisation view second. None: the primary metric is the physical one.
+    pub physical: Option<PhysicalView>,
+}
+
+/// The ranking against a family's physical reference (`Figures::physical`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PhysicalView {
+    /// The metric measuring the distance to the physical reference (one of the family's).
+    pub metric: &'static str,
+    /// The target errors it is ranked at, in the metric's unit, largest first.
+    pub targets: &'static [f64],
+    /// One sentence saying what the ranking measures, for the first screen.
+    pub what: &'static str,
 }

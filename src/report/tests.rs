@@ -106,9 +106,23 @@ fn page_is_self_contained_and_complete() {
             assert!(sec.contains(&format!("<svg data-lines=\"{}\"", d.lines)));
         }
     }
-    // The heat maps are open (outside any <details>), one per scene.
+    // Every part of the case but its narrative is folded and none opens by itself: the heat
+    // maps (one per scene), each scene's plots, the tables.
     let heat = sec.find("data-section=\"heatmaps\"").expect("heat maps");
-    assert!(!sec[..heat].contains("<details"));
+    assert!(
+        sec[..heat].ends_with("<details class=\"part\" "),
+        "{}",
+        &sec[..heat]
+    );
+    let narrative = sec.find("data-section=\"narrative\"").unwrap();
+    assert!(!sec[..narrative].contains("<details"));
+    for t in html::start_tags(sec).iter().filter(|t| t.name == "details") {
+        assert!(!t.attrs.iter().any(|(n, _)| n == "open"), "{t:?}");
+    }
+    assert_eq!(
+        sec.matches("<details class=\"scene\"").count(),
+        fixture::SCENES.len()
+    );
     assert_eq!(
         sec.matches("<table class=\"heatmap\">").count(),
         fixture::SCENES.len()
@@ -142,8 +156,8 @@ fn page_is_self_contained_and_complete() {
     for title in [
         "nine_spring: failed runs",
         "nine_spring: largest completed ladder step",
-        "nine_spring / two_angles: variants x metrics",
-        "nine_spring / large: variants x metrics",
+        "nine_spring / two_angles: heat map of variants x metrics",
+        "nine_spring / large: heat map of variants x metrics",
         "nine_spring: not applicable",
     ] {
         assert!(html.contains(title), "{title}");

@@ -27,6 +27,54 @@ use crate::summary::{Record, Status};
 
 pub use crate::problem::figures::Quantity;
 
+/// The title of a scene's time-series section: the quantities of its family's declaration that
+/// `plots` draw, in order, "along the run" (over time, or over a static scene's load path).
+pub fn section_title(family: &crate::problem::Family, plots: &[Plot]) -> String {
+    let mut names: Vec<String> = vec![];
+    for (q, _) in family.figures.timeseries {
+        let (id, name) = match q {
+            Quantity::Energy => ("energy", "energy drift".to_string()),
+            Quantity::Balance { .. } => ("balance", "energy balance".to_string()),
+            Quantity::Constraint { .. } => ("constraint", "constraint residual".to_string()),
+            Quantity::Track {
+                id,
+                y_label,
+                x: None,
+                ..
+            } => (*id, strip_unit(y_label)),
+            Quantity::Track {
+                id,
+                y_label,
+                x: Some((_, _, x_label)),
+                ..
+            } => (
+                *id,
+                format!("{} against {}", strip_unit(y_label), strip_unit(x_label)),
+            ),
+        };
+        let drawn = plots.iter().any(|p| {
+            p.id.rsplit_once('/')
+                .map_or(p.id.as_str(), |(_, plot)| plot)
+                .starts_with(&format!("{id}_"))
+        });
+        if drawn && !names.contains(&name) {
+            names.push(name);
+        }
+    }
+    if names.is_empty() {
+        return "along the run".into();
+    }
+    format!("{} along the run", names.join(", "))
+}
+
+/// An axis label without its unit (`u_top (m)` -> `u_top`).
+fn strip_unit(label: &str) -> String {
+    label
+        .split_once(" (")
+        .map_or(label, |(name, _)| name)
+        .to_string()
+}
+
 /// The time-series plots of a scene: each quantity and panel of each selection the family
 /// declares (panels that draw no variant of the scene are left out), and each group of a
 /// `Quantity::Track`.

@@ -107,6 +107,7 @@ const FIGURES: Figures = Figures {
     param_groups: &[],
     line_styles: "every line solid (one formulation per panel)",
     draw_failed: false,
+    physical: None,
 };
 
 const fn metric(name: &'static str, unit: &'static str, reference_error: bool) -> Metric {

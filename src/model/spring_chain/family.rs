@@ -35,6 +35,7 @@ const FIGURES: Figures = Figures {
     param_groups: &[],
     line_styles: "chain_nodal solid, chain_modal dashed",
     draw_failed: false,
+    physical: None,
 };
 
 /// The spring-chain family.
