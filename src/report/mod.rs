@@ -422,6 +422,18 @@ pub fn write_report(
         extras.gate_rows,
         extras.stability,
     );
+    // "What this shows" uses the targets the recommendation offers (never one it refuses).
+    if let Some(a) = &extras.advice {
+        let views = data::case_views(summary, cases);
+        for c in &mut page.cases {
+            let view = views.iter().find(|v| v.name == c.name);
+            let advice = a.cases.iter().find(|x| x.case == c.name);
+            if let (Some(cv), Some(ca)) = (view, advice) {
+                let offered: Vec<f64> = ca.targets.iter().map(|t| t.target).collect();
+                c.narrative = narrative::paragraph_with(cv, Some(&offered));
+            }
+        }
+    }
     page.advice = extras.advice;
     page.physical = extras.physical;
     let mut staging = crate::output::Staging::begin(out, crate::output::Writer::Report)
