@@ -446,3 +446,45 @@ fn svg_files_only_on_request() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Pseudo-time is labelled as what it is: a static scene's `t` is the load factor and a
+/// cyclic scene's the protocol's increments (never seconds), a dynamic scene's `t` is in
+/// seconds; an RMS metric is not captioned as a max.
+#[test]
+fn stepped_parameter_and_aggregate_labels() {
+    let cases = crate::case::embedded().unwrap();
+    let mut seen = std::collections::BTreeMap::new();
+    for c in &cases {
+        let f = crate::problem::family_of(c);
+        for s in &c.scenes {
+            let (t, step) = (f.figures.t_axis)(s);
+            seen.insert((c.name.clone(), s.name.clone()), (t, step));
+        }
+    }
+    let of = |case: &str| {
+        seen.iter()
+            .filter(|((c, _), _)| c == case)
+            .map(|(_, v)| *v)
+            .collect::<Vec<_>>()
+    };
+    assert!(of("fiber_column_static").iter().all(|(t, s)| {
+        t.starts_with("load factor") && s.contains("load factor") && !t.contains("(s)")
+    }));
+    assert!(of("fiber_column_cyclic").iter().all(|(t, s)| {
+        t.starts_with("protocol increment") && s.contains("protocol") && !s.contains("(s)")
+    }));
+    for case in ["fiber_column_dynamic", "nine_spring", "flexible_beam"] {
+        assert!(!of(case).is_empty(), "{case}");
+        assert!(
+            of(case)
+                .iter()
+                .all(|(t, s)| *t == "t (s)" && *s == "step dt (s)")
+        );
+    }
+    assert_eq!(
+        data::aggregate("base_shear_error_rms"),
+        " (RMS over the run)"
+    );
+    assert_eq!(data::aggregate("rotation_error_max"), " (max over the run)");
+    assert_eq!(data::aggregate("tip_error"), "");
+}

@@ -128,9 +128,13 @@ pub fn plot(
     sel: &Panel,
     footer: &str,
 ) -> Option<Plot> {
+    let balance_label;
     let (id, name, y_label) = match q {
         Quantity::Energy => ("energy", "energy drift", "|E - E0| / max(|E0|, E_scale)"),
-        Quantity::Balance { .. } => ("balance", "energy balance", "|K + U + D - W| / E_scale"),
+        Quantity::Balance { books, .. } => {
+            balance_label = format!("{books} / E_scale");
+            ("balance", "energy balance", balance_label.as_str())
+        }
         Quantity::Constraint { .. } => ("constraint", "constraint residual", "constraint residual"),
         Quantity::Track { .. } => return None,
     };
@@ -200,10 +204,9 @@ pub fn plot(
     }
     let mut caption = match q {
         Quantity::Constraint { what } => what.to_string(),
-        Quantity::Balance { what } => format!(
-            "The energy balance |K + U + D - W| over the case's energy scale ({} J) at the \
-             score times: kinetic, recoverable strain and dissipated energy against the input \
-             work. {what} ",
+        Quantity::Balance { what, books } => format!(
+            "The energy balance {books} over the case's energy scale E_scale = {} J at the \
+             score times. {what} ",
             cv.energy_scale.map(data::num).unwrap_or_else(|| "1".into())
         ),
         _ => format!(
@@ -240,8 +243,11 @@ pub fn plot(
     }
     Some(Plot {
         id: format!("{}/{id}_{}", sv.name, sel.id),
-        title: format!("{}/{}: {name} over time ({})", cv.name, sv.name, sel.short),
-        x_label: "t (s)".into(),
+        title: format!(
+            "{}/{}: {name} along the run ({})",
+            cv.name, sv.name, sel.short
+        ),
+        x_label: data::t_labels(cv, &sv.name).0.into(),
         y_label: y_label.into(),
         x: Scale::Linear,
         y: Scale::Log,
@@ -378,7 +384,7 @@ fn track_plot(
         id: format!("{}/{id}_{}", sv.name, group.id),
         title: match x {
             None => format!(
-                "{}/{}: {column} over time ({})",
+                "{}/{}: {column} along the run ({})",
                 cv.name, sv.name, group.label
             ),
             Some((x_col, ..)) => format!(
@@ -386,7 +392,7 @@ fn track_plot(
                 cv.name, sv.name, group.label
             ),
         },
-        x_label: x.map_or("t (s)", |x| x.2).into(),
+        x_label: x.map_or(data::t_labels(cv, &sv.name).0, |x| x.2).into(),
         y_label: y_label.into(),
         x: Scale::Linear,
         y: Scale::Linear,

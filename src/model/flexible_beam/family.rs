@@ -48,12 +48,23 @@ const FIGURES: Figures = Figures {
     key_text: "How to read the plots: one panel per formulation, colour = integrator. Marks \
         in a red band at the top of a plot are runs that failed (no value; modal_linear \
         diverges on the spin-ups by design). The energy plots draw the energy balance |E - W| \
-        over the scene's energy_scale (the beam starts at rest). Log axes are labelled at \
+        over the case's energy_scale (their captions give it; the beam starts at rest). Log axes are labelled at \
         powers of ten (1e-6 = 10^-6).",
     work_precision: &[BY_FORMULATION],
     convergence: &[BY_FORMULATION],
     timeseries: &[
-        (Quantity::Energy, BY_FORMULATION),
+        // The series' energy is the balance's residual E - W (zero at t = 0), not an energy
+        // to drift from: drawn as a balance.
+        (
+            Quantity::Balance {
+                books: "|E - W|",
+                what: "E is the beam's kinetic plus strain energy, W the work of the hub's drive \
+                    or torque; the beam starts at rest, so E - W = 0 exactly. The metric \
+                    energy_balance_error_max divides the same residual by each scene's own \
+                    energy_scale instead.",
+            },
+            BY_FORMULATION,
+        ),
         (
             Quantity::Constraint {
                 what: "The AIGC boundary-constraint residual max |C q| (m) at the score times.",
@@ -111,6 +122,7 @@ const FIGURES: Figures = Figures {
         what: "distance of the tip deflection to the physical reference (fe_exact on the \
                reference mesh at the reference step): which formulation models the beam",
     }),
+    t_axis: crate::problem::figures::seconds,
 };
 
 const fn metric(name: &'static str, unit: &'static str, reference_error: bool) -> Metric {

@@ -107,4 +107,5 @@ pub const FIGURES: Figures = Figures {
     line_styles: "body formulation solid, spatial dashed",
     draw_failed: false,
     physical: None,
+    t_axis: crate::problem::figures::seconds,
 };

@@ -36,6 +36,7 @@ const FIGURES: Figures = Figures {
     line_styles: "chain_nodal solid, chain_modal dashed",
     draw_failed: false,
     physical: None,
+    t_axis: crate::problem::figures::seconds,
 };
 
 /// The spring-chain family.
