@@ -173,7 +173,7 @@ fn avoid_summary(list: &[Avoid]) -> String {
             e.2.push(who);
         }
     }
-    groups.sort_by(|a, b| b.1.cmp(&a.1));
+    groups.sort_by_key(|g| std::cmp::Reverse(g.1));
     let mut parts = vec![];
     for (g, n, names) in groups.iter().take(AVOID_GROUPS) {
         let more = names.len().saturating_sub(AVOID_NAMES);

@@ -33,6 +33,7 @@ pub mod axes;
 pub mod chart;
 pub mod colour;
 pub mod convergence;
+pub mod css;
 pub mod data;
 pub mod explain;
 pub mod heatmap;

@@ -121,9 +121,7 @@ fn relative(points: &str) -> Option<String> {
         }
         last = Some((x, y));
     }
-    if last.is_none() {
-        return None;
-    }
+    last?;
     Some(d.trim_end_matches('l').to_string())
 }
 

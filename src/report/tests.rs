@@ -106,27 +106,6 @@ fn page_is_self_contained_and_complete() {
             assert!(sec.contains(&format!("<svg data-lines=\"{}\"", d.lines)));
         }
     }
-    // Every part of the case but its narrative is folded and none opens by itself: the heat
-    // maps (one per scene), each scene's plots, the tables.
-    let heat = sec.find("data-section=\"heatmaps\"").expect("heat maps");
-    assert!(
-        sec[..heat].ends_with("<details class=\"part\" "),
-        "{}",
-        &sec[..heat]
-    );
-    let narrative = sec.find("data-section=\"narrative\"").unwrap();
-    assert!(!sec[..narrative].contains("<details"));
-    for t in html::start_tags(sec).iter().filter(|t| t.name == "details") {
-        assert!(!t.attrs.iter().any(|(n, _)| n == "open"), "{t:?}");
-    }
-    assert_eq!(
-        sec.matches("<details class=\"scene\"").count(),
-        fixture::SCENES.len()
-    );
-    assert_eq!(
-        sec.matches("<table class=\"heatmap\">").count(),
-        fixture::SCENES.len()
-    );
     // No literal markdown reaches the page.
     for md in ["**", "`", "]("] {
         assert!(!html.contains(md), "{md} in the page");
@@ -138,19 +117,6 @@ fn page_is_self_contained_and_complete() {
         assert!(sec.contains(&format!("data-section=\"{kind}\"")), "{kind}");
     }
     let env = env_line(&s);
-    for part in [
-        "abc1234",
-        "2026-01-02T03:04:05Z",
-        "rustc 1.95.0",
-        "Test CPU",
-        "Test OS",
-    ] {
-        assert!(env.contains(part), "{part}");
-    }
-    assert!(
-        sec.contains(&html::esc(&env)),
-        "env line in the case section"
-    );
     let md = std::fs::read_to_string(&files.summary_md).unwrap();
     assert!(md.contains(&env));
     for title in [
@@ -487,4 +453,50 @@ fn stepped_parameter_and_aggregate_labels() {
     );
     assert_eq!(data::aggregate("rotation_error_max"), " (max over the run)");
     assert_eq!(data::aggregate("tip_error"), "");
+}
+
+/// Every part of a case but its narrative is folded and none opens by itself (the heat maps,
+/// one per scene, each scene's plots, the tables), and the case states the environment.
+#[test]
+fn case_parts_are_folded() {
+    let s = fixture::summary();
+    let cases = crate::case::embedded().unwrap();
+    let page = build_page(&s, std::path::Path::new("/nonexistent"), &cases, None, None);
+    let html = html::render(&page);
+    let sec = case_html(&html, fixture::CASE);
+    // Every part of the case but its narrative is folded and none opens by itself: the heat
+    // maps (one per scene), each scene's plots, the tables.
+    let heat = sec.find("data-section=\"heatmaps\"").expect("heat maps");
+    assert!(
+        sec[..heat].ends_with("<details class=\"part\" "),
+        "{}",
+        &sec[..heat]
+    );
+    let narrative = sec.find("data-section=\"narrative\"").unwrap();
+    assert!(!sec[..narrative].contains("<details"));
+    for t in html::start_tags(sec).iter().filter(|t| t.name == "details") {
+        assert!(!t.attrs.iter().any(|(n, _)| n == "open"), "{t:?}");
+    }
+    assert_eq!(
+        sec.matches("<details class=\"scene\"").count(),
+        fixture::SCENES.len()
+    );
+    assert_eq!(
+        sec.matches("<table class=\"heatmap\">").count(),
+        fixture::SCENES.len()
+    );
+    let env = env_line(&s);
+    for part in [
+        "abc1234",
+        "2026-01-02T03:04:05Z",
+        "rustc 1.95.0",
+        "Test CPU",
+        "Test OS",
+    ] {
+        assert!(env.contains(part), "{part}");
+    }
+    assert!(
+        sec.contains(&html::esc(&env)),
+        "env line in the case section"
+    );
 }
