@@ -223,7 +223,12 @@ pub struct Figures {
 
 /// `t` is time in seconds: `("t (s)", "step dt (s)")`.
 pub fn seconds(_: &crate::case::Scene) -> (&'static str, &'static str) {
-    ("t (s)", "step dt (s)")
+    (seconds_label(), "step dt (s)")
+}
+
+/// The label of `t` in seconds.
+pub const fn seconds_label() -> &'static str {
+    "t (s)"
 }
 
 /// The ranking against a family's physical reference (`Figures::physical`).

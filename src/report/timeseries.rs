@@ -67,6 +67,16 @@ pub fn section_title(family: &crate::problem::Family, plots: &[Plot]) -> String 
     format!("{} along the run", names.join(", "))
 }
 
+/// "over time" where the scene's `t` is time in seconds, else "along the run" (a load
+/// factor, a protocol's increments: `data::t_labels`).
+fn over(cv: &CaseView, scene: &str) -> &'static str {
+    if data::t_labels(cv, scene).0 == crate::problem::figures::seconds_label() {
+        "over time"
+    } else {
+        "along the run"
+    }
+}
+
 /// An axis label without its unit (`u_top (m)` -> `u_top`).
 fn strip_unit(label: &str) -> String {
     label
@@ -244,8 +254,11 @@ pub fn plot(
     Some(Plot {
         id: format!("{}/{id}_{}", sv.name, sel.id),
         title: format!(
-            "{}/{}: {name} along the run ({})",
-            cv.name, sv.name, sel.short
+            "{}/{}: {name} {} ({})",
+            cv.name,
+            sv.name,
+            over(cv, &sv.name),
+            sel.short
         ),
         x_label: data::t_labels(cv, &sv.name).0.into(),
         y_label: y_label.into(),
@@ -384,8 +397,11 @@ fn track_plot(
         id: format!("{}/{id}_{}", sv.name, group.id),
         title: match x {
             None => format!(
-                "{}/{}: {column} along the run ({})",
-                cv.name, sv.name, group.label
+                "{}/{}: {column} {} ({})",
+                cv.name,
+                sv.name,
+                over(cv, &sv.name),
+                group.label
             ),
             Some((x_col, ..)) => format!(
                 "{}/{}: {column} against {x_col} ({})",
