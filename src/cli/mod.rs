@@ -469,6 +469,7 @@ fn cmd_report(
                     ..Default::default()
                 },
             )),
+            physical: Some(physical_advice_for(common, &cases, &summary)),
             svg_files: svg,
         },
         &out,
@@ -556,6 +557,26 @@ fn advice_for(
         p.accuracy_claim(&c.primary_metric)
     };
     crate::advise::advise(summary, &crate::advise::specs(cases, &claim), opts)
+}
+
+/// The recommendation on the physical metric of the cases whose family declares one
+/// (`problem::figures::PhysicalView`): the same `advise` ranking, at the family's targets, the
+/// references' claims for that metric deciding which targets are offered.
+fn physical_advice_for(
+    common: &Common,
+    cases: &[Case],
+    summary: &crate::summary::Summary,
+) -> crate::advise::Advice {
+    let root = common.references.clone().unwrap_or_else(default_references);
+    let claim = |c: &Case, scene: &str| -> Option<f64> {
+        let metric = crate::problem::family_of(c).figures.physical?.metric;
+        let s = c.scene(scene)?;
+        let mut p = (crate::problem::family_of(c).compile)(c, s).ok()?;
+        p.attach_reference(&root).ok()?;
+        p.accuracy_claim(metric)
+    };
+    let specs = crate::report::advice::physical_specs(cases, &claim);
+    crate::advise::advise(summary, &specs, &crate::advise::Options::default())
 }
 
 fn cmd_advise(common: &Common, a: &AdviseArgs) -> Result<i32, String> {

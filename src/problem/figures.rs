@@ -110,7 +110,12 @@ pub enum Quantity {
     /// `|E(t)| / energy_scale` on a log axis; `what` is the caption's sentence saying how
     /// the books are kept. Runs whose `energy` is not finite (no energy books: a scene
     /// without dynamics) have no line, and a scene where no run has one has no panel.
-    Balance { what: &'static str },
+    /// `books` is the balance's formula as the family keeps it (`|E - W|`, `|K + U + D - W|`):
+    /// the axis label and the caption name it.
+    Balance {
+        what: &'static str,
+        books: &'static str,
+    },
     /// The chart's constraint residual (absent for charts without one); `what` is the
     /// caption's sentence saying what it is for the family's charts.
     Constraint { what: &'static str },
@@ -205,4 +210,34 @@ pub struct Figures {
     /// the failure (the beam's diverging `modal_linear`); otherwise failed runs are left out
     /// of the time-series plots (and their series files are not written).
     pub draw_failed: bool,
+    /// A family whose formulations differ in physics (the beam's modal, AIGC and FE forms)
+    /// declares the metric against its physical reference: the report's first screen ranks
+    /// the variants on it first (through `advise`, at `targets`), the primary metric's
+    /// time-discretisation view second. None: the primary metric is the physical one.
+    pub physical: Option<PhysicalView>,
+    /// What a scene's `t` is, for the axes: (the label of `t`, the label of its step). Time in
+    /// seconds for a dynamic scene (`seconds`); a static scene's load factor or a cyclic
+    /// protocol's increments are not seconds, and their family says so.
+    pub t_axis: fn(&crate::case::Scene) -> (&'static str, &'static str),
+}
+
+/// `t` is time in seconds: `("t (s)", "step dt (s)")`.
+pub fn seconds(_: &crate::case::Scene) -> (&'static str, &'static str) {
+    (seconds_label(), "step dt (s)")
+}
+
+/// The label of `t` in seconds.
+pub const fn seconds_label() -> &'static str {
+    "t (s)"
+}
+
+/// The ranking against a family's physical reference (`Figures::physical`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PhysicalView {
+    /// The metric measuring the distance to the physical reference (one of the family's).
+    pub metric: &'static str,
+    /// The target errors it is ranked at, in the metric's unit, largest first.
+    pub targets: &'static [f64],
+    /// One sentence saying what the ranking measures, for the first screen.
+    pub what: &'static str,
 }

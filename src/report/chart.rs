@@ -220,7 +220,9 @@ pub fn render(p: &Plot) -> Result<Rendered, DrawError> {
     let entries = legend_entries(p);
     let height = MIN_HEIGHT.max((entries.len() as i32 * ROW_H + 40) as u32 + FOOTER_H);
     let file = draw(p, &x, &y, (WIDTH, height), Some(&entries))?;
-    let inline = draw(p, &x, &y, (INLINE_WIDTH, INLINE_HEIGHT), None)?;
+    // The page's copy: no footer (the page states the environment once per case) and the
+    // page's shorter syntax (`svg_page`).
+    let inline = super::svg_page::compact(&draw(p, &x, &y, (INLINE_WIDTH, INLINE_HEIGHT), None)?);
     Ok(Rendered::Svg(Drawn {
         file,
         inline,
@@ -242,12 +244,14 @@ fn draw(
     {
         let root = SVGBackend::with_string(&mut buf, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
-        let (main, footer) = root.split_vertically(height - FOOTER_H);
+        // The inline chart (no legend column) leaves the footer to the page.
+        let footer_h = if entries.is_some() { FOOTER_H } else { 0 };
+        let (main, footer) = root.split_vertically(height - footer_h);
         match entries {
             Some(entries) => {
                 let legend_w = legend_width(entries);
                 let (plot_area, legend_area) = main.split_horizontally(width - legend_w);
-                draw_chart(p, &plot_area, x, y, &mut overlay)?;
+                draw_chart(p, &plot_area, x, y, true, &mut overlay)?;
                 draw_legend(
                     &legend_area,
                     (width - legend_w) as i32,
@@ -255,15 +259,17 @@ fn draw(
                     &mut overlay,
                 )?;
             }
-            None => draw_chart(p, &main, x, y, &mut overlay)?,
+            None => draw_chart(p, &main, x, y, false, &mut overlay)?,
         }
-        footer
-            .draw(&Text::new(
-                p.footer.clone(),
-                (8, 2),
-                font(10.0).color(&RGBColor(110, 110, 110)),
-            ))
-            .map_err(err)?;
+        if entries.is_some() {
+            footer
+                .draw(&Text::new(
+                    p.footer.clone(),
+                    (8, 2),
+                    font(10.0).color(&RGBColor(110, 110, 110)),
+                ))
+                .map_err(err)?;
+        }
         root.present().map_err(err)?;
     }
     // The data layer goes on top of plotters' grid, axes and text.
@@ -405,17 +411,23 @@ impl Ranged for Ticked<'_> {
 }
 
 /// Axes, grid, labels and the failed band with plotters; the lines, markers and failure marks
-/// as SVG elements in `overlay`, at the chart's own pixel mapping.
+/// as SVG elements in `overlay`, at the chart's own pixel mapping. The title is drawn only
+/// when `titled` (the file): the page writes it in HTML above the inline chart, where a long
+/// title wraps instead of being clipped at the chart's width.
 fn draw_chart(
     p: &Plot,
     area: &DrawingArea<SVGBackend, Shift>,
     x: &AxisSpec,
     y: &AxisSpec,
+    titled: bool,
     overlay: &mut String,
 ) -> Result<(), DrawError> {
     let category = matches!(x.scale, super::axes::Scale::Category(_));
-    let mut chart = ChartBuilder::on(area)
-        .caption(&p.title, font(14.0).color(&INK))
+    let mut builder = ChartBuilder::on(area);
+    if titled {
+        builder.caption(&p.title, font(14.0).color(&INK));
+    }
+    let mut chart = builder
         .margin(10)
         .x_label_area_size(if category { 56 } else { 44 })
         .y_label_area_size(64)

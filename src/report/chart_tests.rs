@@ -128,9 +128,17 @@ fn categories_are_not_joined() {
     let Rendered::Svg(d) = render(&p).unwrap() else {
         panic!("no svg")
     };
+    // The file keeps its polyline; the page's copy draws it as a path (`svg_page`).
     assert!(
-        d.inline
+        d.file
             .contains("<g class=\"series\" data-variant=\"so3 / rk4 / body\">\n<polyline")
+    );
+    assert!(
+        d.inline.contains(
+            "<g class=\"series\" data-variant=\"so3 / rk4 / body\">\n<path fill=\"none\""
+        ),
+        "{}",
+        d.inline
     );
 }
 

@@ -101,8 +101,8 @@ pub fn plot(cv: &CaseView, sv: &SceneView, sel: &Panel, footer: &str) -> Plot {
             "{}/{}: {} vs step ({})",
             cv.name, sv.name, cv.primary, sel.short
         ),
-        x_label: "step dt (s)".into(),
-        y_label: cv.primary.clone(),
+        x_label: super::data::t_labels(cv, &sv.name).1.into(),
+        y_label: super::data::with_unit(cv, &cv.primary),
         x: super::axes::Scale::Log,
         y: super::axes::Scale::Log,
         lines,

@@ -73,6 +73,38 @@ impl Ord for VariantKey {
     }
 }
 
+/// What a scene's `t` is, as its family declares (`Figures::t_axis`): the label of `t` and of
+/// its step; `("t", "step dt")` when the case file was not given.
+pub fn t_labels(cv: &CaseView, scene: &str) -> (&'static str, &'static str) {
+    cv.case
+        .and_then(|c| c.scene(scene))
+        .map_or(("t", "step dt"), |s| (cv.family.figures.t_axis)(s))
+}
+
+/// A metric's axis label with its unit as the family declares it (`rotation_error_max (rad)`;
+/// `(1)` for a relative one); the bare name when the family does not declare it.
+pub fn with_unit(cv: &CaseView, metric: &str) -> String {
+    match cv.family.metrics.iter().find(|m| m.name == metric) {
+        Some(m) if !m.unit.is_empty() => format!("{metric} ({})", m.unit),
+        _ => metric.to_string(),
+    }
+}
+
+/// How a metric gathers its run, from its name's suffix (the metric names' convention):
+/// ` (max over the run)` for `_max`, ` (RMS over the run)` for `_rms`, ` (at the end)` for
+/// `_final`, nothing otherwise.
+pub fn aggregate(metric: &str) -> &'static str {
+    if metric.ends_with("_max") {
+        " (max over the run)"
+    } else if metric.ends_with("_rms") {
+        " (RMS over the run)"
+    } else if metric.ends_with("_final") {
+        " (at the end)"
+    } else {
+        ""
+    }
+}
+
 /// A record's ladder value: its step (s) or its tolerance.
 pub fn step_of(r: &Record) -> Option<f64> {
     r.dt.or(r.tol)

@@ -13,8 +13,10 @@
 //! not positive (it cannot be placed on a log scale). A failed run's cells are hatched red
 //! with the failure kind; a metric that does not apply is blank grey, one that could not be
 //! computed grey `null`. The gate verdict of a cell is a frame and a mark (✓ pass, ✗ fail),
-//! never the fill. The HTML carries a sort key per cell (`data-k`: 0 best .. 1 worst, then
-//! failed, null, n/a) for the page's inline sorting script; without the script the rows stay
+//! never the fill. The HTML carries the row's registry position on its first cell (`data-k`)
+//! and each fill as one of `LEVELS` classes (`css`); the page's inline script sorts by the
+//! values the cells show (best first within the column's direction, then failed, null,
+//! n/a); without the script the rows stay
 //! in registry order. Everything is computed here, so the page is byte-identical for one
 //! summary.
 use std::collections::BTreeMap;
@@ -159,6 +161,30 @@ pub fn colour(t: f64) -> (u8, u8, u8) {
     (mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
+/// The fills a cell can take: the ramp sampled at this many levels (a class each, `c0` best
+/// .. `c24` worst, in the page's CSS: `css`), finer than the eye tells apart on a table.
+pub const LEVELS: usize = 25;
+
+/// The level of badness `t` (0 best .. `LEVELS - 1` worst).
+pub fn level(t: f64) -> usize {
+    (t.clamp(0.0, 1.0) * (LEVELS - 1) as f64).round() as usize
+}
+
+/// The CSS of the fill levels: each level's ramp colour, white text on the dark ones
+/// (relative luminance below about 0.35).
+pub fn css() -> String {
+    let mut s = String::new();
+    for k in 0..LEVELS {
+        let (r, g, b) = colour(k as f64 / (LEVELS - 1) as f64);
+        let lum = 0.2126 * f64::from(r) + 0.7152 * f64::from(g) + 0.0722 * f64::from(b);
+        s.push_str(&format!(
+            "table.heatmap td.c{k}{{background:#{r:02x}{g:02x}{b:02x}{}}}\n",
+            if lum < 110.0 { ";color:#fff" } else { "" }
+        ));
+    }
+    s
+}
+
 /// The heat map of a scene.
 pub fn heatmap(
     cv: &CaseView,
@@ -242,12 +268,16 @@ pub fn heatmap(
 }
 
 /// The HTML of a heat map (`data-section="heatmap"`), open on the page.
-pub fn html(h: &HeatMap) -> String {
+/// `caption`: whether to write how to read it (the first heat map of a case does; the others
+/// read the same).
+pub fn html(h: &HeatMap, caption: bool) -> String {
     let mut s = format!(
-        "<div data-section=\"heatmap\" class=\"heat\">\n<h3>{}</h3>\n<p>{}</p>\n",
-        esc(&h.title),
-        esc(&h.caption)
+        "<div data-section=\"heatmap\" class=\"heat\">\n<h3>{}</h3>\n",
+        esc(&h.title)
     );
+    if caption {
+        s.push_str(&format!("<p>{}</p>\n", esc(&h.caption)));
+    }
     s.push_str("<p class=\"ramp\">best ");
     for i in 0..RAMP.len() {
         let (r, g, b) = colour(i as f64 / (RAMP.len() - 1) as f64);
@@ -294,7 +324,7 @@ pub fn html(h: &HeatMap) -> String {
     s.push_str("</tr></thead>\n<tbody>\n");
     for (i, r) in h.rows.iter().enumerate() {
         s.push_str(&format!(
-            "<tr><td data-k=\"{i}\">{}</td><td data-k=\"{i}\">{}</td><td data-k=\"{i}\">{}</td><td data-k=\"{i}\">{}</td>",
+            "<tr><td data-k=\"{i}\">{}</td><td>{}</td><td>{}</td><td>{}</td>",
             esc(&r.param),
             esc(&r.integrator),
             esc(&r.formulation),
@@ -316,30 +346,30 @@ fn cell_html(c: &HeatCell) -> String {
         Some(Verdict::Skip) | None => ("", ""),
     };
     match &c.value {
-        Value::Num(x, Some(t)) => {
-            let (r, g, b) = colour(*t);
-            // Dark fills take white text (relative luminance below about 0.35).
-            let lum = 0.2126 * f64::from(r) + 0.7152 * f64::from(g) + 0.0722 * f64::from(b);
-            format!(
-                "<td class=\"hv{}{gate_class}\" data-k=\"{t:.6}\" style=\"background:#{r:02x}{g:02x}{b:02x}\">{mark}{}</td>",
-                if lum < 110.0 { " dk" } else { "" },
-                num(*x)
-            )
-        }
-        Value::Num(x, None) => format!(
-            "<td class=\"hv{gate_class}\" data-k=\"1.5\">{mark}{}</td>",
+        Value::Num(x, Some(t)) => format!(
+            "<td class=\"c{}{gate_class}\">{mark}{}</td>",
+            level(*t),
             num(*x)
         ),
+        Value::Num(x, None) => {
+            let class = gate_class.trim_start();
+            let class = if class.is_empty() {
+                String::new()
+            } else {
+                format!(" class=\"{class}\"")
+            };
+            format!("<td{class}>{mark}{}</td>", num(*x))
+        }
         Value::Failed(kind) => format!(
-            "<td class=\"hfail{gate_class}\" data-k=\"2\" title=\"the run failed: {}\">{mark}{}</td>",
+            "<td class=\"hfail{gate_class}\" title=\"the run failed: {}\">{mark}{}</td>",
             esc(kind),
             esc(kind)
         ),
         Value::Null => {
-            format!("<td class=\"hna{gate_class}\" data-k=\"3\">{mark}null</td>")
+            format!("<td class=\"hna{gate_class}\">{mark}null</td>")
         }
         Value::NotApplicable => {
-            format!("<td class=\"hna{gate_class}\" data-k=\"4\">{mark}</td>")
+            format!("<td class=\"hna{gate_class}\">{mark}</td>")
         }
     }
 }

@@ -17,6 +17,7 @@
 //! scripts with a source and embedded resources, event-handler attributes, `url(`/`@import`
 //! in CSS, and missing sections.
 use super::chart::{Entry, Rendered};
+use super::explain::Explained;
 use super::stability::StabilitySection;
 use super::tables::{Table, Tone};
 use super::{CaseSection, Figure, Page};
@@ -29,7 +30,7 @@ pub const REQUIRED_SECTIONS: [&str; 7] = [
     "timeseries",
     "failures",
     "largest-step",
-    "matrix",
+    "heatmap",
 ];
 
 /// Escapes text for HTML content and attribute values.
@@ -47,61 +48,6 @@ pub fn esc(s: &str) -> String {
     }
     o
 }
-
-const CSS: &str = "
-body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:0 auto;max-width:1880px;
- padding:0 16px 40px;color:#222;line-height:1.4}
-h1{margin:12px 0 2px;font-size:26px}h2{margin:28px 0 4px;border-bottom:2px solid #ccc}
-h3{margin:18px 0 6px}
-.env{font-size:12px;color:#555;font-family:ui-monospace,monospace;margin:2px 0 6px}
-.key{font-size:13px;background:#f6f6f6;padding:6px 10px;border-radius:4px;margin:4px 0}
-header p{margin:4px 0}
-code{font-family:ui-monospace,monospace;font-size:92%;background:#f2f2f2;padding:0 2px}
-.figs{display:grid;grid-template-columns:repeat(auto-fill,minmax(min(100%,640px),1fr));
- gap:0 24px}
-figure{margin:12px 0 20px;min-width:0}
-.plotrow{display:flex;flex-wrap:wrap;align-items:flex-start;gap:4px 10px}
-.plot{flex:1 1 400px;max-width:560px;min-width:0}
-.plot svg{display:block;width:100%;height:auto}
-ul.legend{flex:1 1 150px;list-style:none;margin:6px 0 0;padding:0;font-size:12px;
- display:flex;flex-wrap:wrap;flex-direction:column;align-content:flex-start;gap:1px 12px}
-ul.legend li{white-space:nowrap;display:flex;align-items:center;gap:4px}
-ul.legend li.lh{font-weight:600;color:#444;margin-top:4px}
-.ls{display:inline-block;width:26px;border-top:2px solid;height:0}
-.ls.dash{border-top-style:dashed}.ls.none{border-top-color:transparent}
-.lm{display:inline-block;width:12px;text-align:center;font-size:12px;line-height:12px}
-figcaption{font-size:13px;color:#444;max-width:900px}
-.nodata{max-width:860px;padding:16px 20px;border:1px dashed #bbb;color:#777;background:#fafafa}
-.roundoff{color:#333;background:#f4f8fb;border-style:solid;border-color:#c9d8ea}
-details{margin:8px 0}summary{cursor:pointer;font-weight:600;margin:6px 0}
-.tablewrap{overflow-x:auto;max-width:100%}
-table{border-collapse:collapse;font-size:12px;margin:6px 0 14px}
-th,td{border:1px solid #ddd;padding:2px 6px;text-align:left;white-space:nowrap}
-th{background:#eee;position:sticky;top:0}
-td.msg{white-space:normal;min-width:320px}
-td.pass{background:#d4efd4}td.fail{background:#f6c8c8;font-weight:600}td.neutral{background:#f3f3f3}
-.narrative li{max-width:980px;margin:3px 0}
-.scene{border-left:3px solid #ddd;padding-left:12px}
-.stability{border-left:3px solid #c9d8ea;padding-left:12px}
-td[title]{text-decoration:underline dotted #999;cursor:help}
-table.heatmap td{text-align:right;font-variant-numeric:tabular-nums}
-table.heatmap td:nth-child(-n+4){text-align:left;background:#fff}
-table.heatmap td.dk{color:#fff}
-table.heatmap th button{font:inherit;font-weight:600;border:0;background:none;padding:0;
- cursor:pointer;text-decoration:underline dotted #888}
-td.hfail,.ramp .hfail{background:repeating-linear-gradient(45deg,#f4c2c2 0 4px,#fff 4px 8px);
- color:#8b0000;font-weight:600}
-td.hna,.ramp .hna{background:#e4e4e4;color:#777}
-td.gp{box-shadow:inset 0 0 0 2px #1b7f3b}td.gf{box-shadow:inset 0 0 0 3px #000;font-weight:700}
-.ramp{font-size:12px;display:flex;flex-wrap:wrap;align-items:center;gap:0;margin:2px 0}
-.ramp span{display:inline-block;width:22px;height:12px;border:0}
-.ramp .hfail,.ramp .hna{width:auto;height:auto;padding:0 4px;margin:0 4px 0 12px}
-section.advice{overflow-x:auto}
-.heat .tablewrap{max-height:560px;overflow:auto;border:1px solid #ddd}
-.heat table{margin:0}
-table.advice{margin:4px 0}table.advice td,table.advice th{padding:1px 6px}
-section.advice h2{margin:10px 0 2px}section.advice p{margin:2px 0;font-size:13px}
-";
 
 fn env_p(env: &str) -> String {
     format!("<p class=\"env\">{}</p>\n", esc(env))
@@ -141,16 +87,15 @@ pub fn legend(entries: &[Entry]) -> String {
                 text,
             } => {
                 let hex = super::style::hex(*colour);
+                // The colour once per row (`--c`): the sample's line and the marker take it.
                 let sample = match (line, dashed) {
-                    (false, _) => "<span class=\"ls none\"></span>".to_string(),
-                    (true, dashed) => format!(
-                        "<span class=\"ls{}\" style=\"border-top-color:{hex}\"></span>",
-                        if *dashed { " dash" } else { "" }
-                    ),
+                    (false, _) => "<span class=\"ls none\"></span>",
+                    (true, true) => "<span class=\"ls dash\"></span>",
+                    (true, false) => "<span class=\"ls\"></span>",
                 };
                 let glyph = marker.map(super::style::glyph).unwrap_or(' ');
                 s.push_str(&format!(
-                    "<li>{sample}<span class=\"lm\" style=\"color:{hex}\">{glyph}</span>{}</li>",
+                    "<li style=\"--c:{hex}\">{sample}<span class=\"lm\">{glyph}</span>{}</li>",
                     esc(text)
                 ));
             }
@@ -168,7 +113,7 @@ fn with_lines(svg: &str, lines: usize) -> String {
     }
 }
 
-fn figure(f: &Figure) -> String {
+fn figure(f: &Figure, caption: &str) -> String {
     let body = match &f.body {
         Rendered::Svg(d) => format!(
             "<div class=\"plotrow\">\n<div class=\"plot\">{}</div>\n{}\n</div>",
@@ -178,11 +123,12 @@ fn figure(f: &Figure) -> String {
         Rendered::NoData(why) => format!("<p class=\"nodata\">{}</p>", esc(why)),
         Rendered::Note(why) => format!("<p class=\"nodata roundoff\">{}</p>", esc(why)),
     };
+    // The title above the plot in HTML (it wraps; the inline chart has none of its own).
     format!(
-        "<figure data-plot=\"{}\">\n{body}\n<figcaption><b>{}</b>. {}</figcaption>\n</figure>\n",
+        "<figure data-plot=\"{}\">\n<div class=\"ptitle\">{}</div>\n{body}\n<figcaption>{}</figcaption>\n</figure>\n",
         esc(&f.kind),
         esc(&f.title),
-        prose(&f.caption)
+        prose(caption)
     )
 }
 
@@ -197,22 +143,26 @@ fn tone_class(t: Tone) -> &'static str {
 
 /// Renders a table (long ones folded in a `<details>`).
 pub fn table(t: &Table, open_below: usize) -> String {
-    let mut s = format!(
-        "<div data-section=\"{}\">\n<h3>{}</h3>\n<p>{}</p>\n",
-        t.kind,
-        esc(&t.title),
-        prose(&t.note)
-    );
+    let fold = t.rows.len() > open_below;
+    let mut s = format!("<div data-section=\"{}\">\n", t.kind);
+    if fold {
+        // Folded: the title is the summary, the note and the rows open on demand.
+        s.push_str(&format!(
+            "<details><summary>{} ({})</summary>\n<p>{}</p>\n",
+            esc(&t.title),
+            crate::summary::count(t.rows.len(), "row"),
+            prose(&t.note)
+        ));
+    } else {
+        s.push_str(&format!(
+            "<h3>{}</h3>\n<p>{}</p>\n",
+            esc(&t.title),
+            prose(&t.note)
+        ));
+    }
     if t.rows.is_empty() {
         s.push_str("<p class=\"nodata\">no rows</p>\n</div>\n");
         return s;
-    }
-    let fold = t.rows.len() > open_below;
-    if fold {
-        s.push_str(&format!(
-            "<details><summary>{} rows</summary>\n",
-            t.rows.len()
-        ));
     }
     s.push_str("<div class=\"tablewrap\">\n<table>\n<thead><tr>");
     for h in &t.header {
@@ -248,24 +198,52 @@ pub fn table(t: &Table, open_below: usize) -> String {
     s
 }
 
-fn figures(kind: &str, title: &str, figs: &[Figure]) -> String {
-    let mut s = format!("<div data-section=\"{kind}\">\n<h3>{}</h3>\n", esc(title));
+/// How a figure's caption is written: its family's explanations (`explain`) and the kind of
+/// plot it is.
+#[derive(Clone, Copy)]
+struct Captions<'a> {
+    explained: &'a Explained,
+    family: &'a str,
+}
+
+impl Captions<'_> {
+    fn of(&self, kind: &str, f: &Figure) -> String {
+        self.explained.caption(self.family, kind, &f.caption)
+    }
+}
+
+/// A `data-section` of figures; `kind` is the kind of plot their captions are explained under.
+fn figures(section: &str, kind: &str, title: &str, figs: &[Figure], cap: Captions) -> String {
+    let mut s = format!(
+        "<div data-section=\"{section}\">\n<h3>{}</h3>\n",
+        esc(title)
+    );
     if figs.is_empty() {
         s.push_str("<p class=\"nodata\">no data</p>\n");
     }
     s.push_str("<div class=\"figs\">\n");
     for f in figs {
-        s.push_str(&figure(f));
+        s.push_str(&figure(f, &cap.of(kind, f)));
     }
     s.push_str("</div>\n</div>\n");
     s
 }
 
+/// A folded part of a case: `<details data-section=...>` with a one-line summary.
+fn fold(section: &str, summary: &str, body: &str) -> String {
+    format!(
+        "<details class=\"part\" data-section=\"{section}\">\n<summary>{}</summary>\n{body}</details>\n",
+        esc(summary)
+    )
+}
+
 /// The stability study's part of a case (`data-section="stability"`, its tables and plots
 /// inside with their own `data-section`s).
-fn stability_part(st: &StabilitySection) -> String {
-    let mut s =
-        String::from("<div data-section=\"stability\" class=\"stability\">\n<h3>Stability</h3>\n");
+fn stability_part(st: &StabilitySection, cap: Captions) -> String {
+    let mut s = String::from(
+        "<details data-section=\"stability\" class=\"stability part\">\n<summary>Stability \
+         study</summary>\n",
+    );
     s.push_str(&env_p(&st.env_line));
     s.push_str("<ul class=\"narrative\">\n");
     for sentence in &st.text {
@@ -273,7 +251,7 @@ fn stability_part(st: &StabilitySection) -> String {
     }
     s.push_str("</ul>\n");
     for t in st.steps.iter().filter(|t| t.open) {
-        s.push_str(&table(&t.table, 60));
+        s.push_str(&table(&t.table, 0));
     }
     let generated: Vec<_> = st.steps.iter().filter(|t| !t.open).collect();
     if !generated.is_empty() {
@@ -282,49 +260,61 @@ fn stability_part(st: &StabilitySection) -> String {
             generated.len()
         ));
         for t in generated {
-            s.push_str(&table(&t.table, 60));
+            s.push_str(&table(&t.table, 0));
         }
         s.push_str("</details>\n");
     }
     if !st.ladder.is_empty() {
         s.push_str(&figures(
             "stability-ladder",
+            "stability",
             "Stiffness ladder: largest steps against the stiffness factor",
             &st.ladder,
+            cap,
         ));
     }
     if !st.long_horizon.is_empty() {
         s.push_str(&figures(
             "stability-long-horizon-plots",
+            "stability",
             "Long horizon: energy and momentum error over time",
             &st.long_horizon,
+            cap,
         ));
     }
     if !st.singularity.is_empty() {
         s.push_str(&figures(
             "stability-singularity",
+            "stability",
             "Singularity ladder: error, work and conditioning against the approach distance",
             &st.singularity,
+            cap,
         ));
     }
     if !st.sensitivity.is_empty() {
         s.push_str(&figures(
             "stability-sensitivity",
+            "stability",
             "Sensitivity: growth of an initial perturbation",
             &st.sensitivity,
+            cap,
         ));
     }
     for t in [&st.long_table, &st.other, &st.other_fits]
         .into_iter()
         .flatten()
     {
-        s.push_str(&table(t, 40));
+        s.push_str(&table(t, 0));
     }
-    s.push_str("</div>\n");
+    s.push_str("</details>\n");
     s
 }
 
-fn case_section(c: &CaseSection, env: &str) -> String {
+fn case_section(c: &CaseSection, env: &str, explained: &Explained) -> String {
+    let cap = Captions {
+        explained,
+        family: c.family,
+    };
     let mut s = format!(
         "<section class=\"case\" data-case=\"{}\" id=\"{}\">\n<h2>{}{}</h2>\n",
         esc(&c.name),
@@ -345,63 +335,89 @@ fn case_section(c: &CaseSection, env: &str) -> String {
     }
     s.push_str("</ul>\n</div>\n");
     if let Some(g) = &c.gates {
-        s.push_str(&table(g, 40));
+        s.push_str(&table(g, 0));
     }
     if !c.scenes.is_empty() {
-        s.push_str("<div data-section=\"heatmaps\">\n");
-        for sc in &c.scenes {
-            s.push_str(&super::heatmap::html(&sc.heat));
-        }
-        s.push_str("</div>\n");
+        let maps: String = c
+            .scenes
+            .iter()
+            .enumerate()
+            .map(|(i, sc)| super::heatmap::html(&sc.heat, i == 0))
+            .collect();
+        s.push_str(&fold(
+            "heatmaps",
+            &format!(
+                "Heat maps: variants x metrics, one per scene ({})",
+                crate::summary::count(c.scenes.len(), "scene")
+            ),
+            &maps,
+        ));
     }
     if !c.across.is_empty() {
-        s.push_str(&figures("across-scenes", "Across scenes", &c.across));
+        s.push_str(&fold(
+            "across",
+            &format!("Across scenes ({} plots)", c.across.len()),
+            &figures(
+                "across-scenes",
+                "across-scenes",
+                "Across scenes",
+                &c.across,
+                cap,
+            ),
+        ));
     }
-    for (i, sc) in c.scenes.iter().enumerate() {
+    for sc in &c.scenes {
         s.push_str(&format!(
-            "<details class=\"scene\" data-section=\"scene\" data-scene=\"{}\"{}>\n<summary>Scene {} ({} plots, {} variants)</summary>\n",
+            "<details class=\"scene\" data-section=\"scene\" data-scene=\"{}\">\n<summary>Scene {} ({} plots, {} variants)</summary>\n",
             esc(&sc.name),
-            if i == 0 { " open" } else { "" },
             esc(&sc.name),
             sc.work_precision.len() + sc.convergence.len() + sc.timeseries.len(),
             sc.variants
         ));
         s.push_str(&figures(
             "work-precision",
+            "work-precision",
             &format!("{}: work-precision", sc.name),
             &sc.work_precision,
+            cap,
         ));
         s.push_str(&figures(
             "convergence",
+            "convergence",
             &format!("{}: convergence", sc.name),
             &sc.convergence,
+            cap,
         ));
         s.push_str(&figures(
             "timeseries",
-            &format!(
-                "{}: energy drift and constraint residual over time",
-                sc.name
-            ),
+            "timeseries",
+            &format!("{}: {}", sc.name, timeseries_title(sc)),
             &sc.timeseries,
+            cap,
         ));
-        s.push_str(&table(&sc.matrix, 0));
         s.push_str("</details>\n");
     }
     if c.scenes.is_empty() {
-        for kind in ["work-precision", "convergence", "timeseries", "matrix"] {
+        for kind in ["work-precision", "convergence", "timeseries", "heatmap"] {
             s.push_str(&format!(
                 "<div data-section=\"{kind}\"><p class=\"nodata\">no data</p></div>\n"
             ));
         }
     }
-    s.push_str(&table(&c.failures, 30));
+    s.push_str(&table(&c.failures, 0));
     s.push_str(&table(&c.largest, 0));
     if let Some(st) = &c.stability {
-        s.push_str(&stability_part(st));
+        s.push_str(&stability_part(st, cap));
     }
-    s.push_str(&table(&c.na, 30));
+    s.push_str(&table(&c.na, 0));
     s.push_str("</section>\n");
     s
+}
+
+/// The title of a scene's plots over time: what its family declares they draw
+/// (`timeseries::section_title`).
+fn timeseries_title(sc: &super::SceneSection) -> String {
+    sc.timeseries_title.clone()
 }
 
 /// The whole page.
@@ -409,10 +425,14 @@ pub fn render(page: &Page) -> String {
     let mut s = String::from(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>mbdbench report</title>\n<style>",
     );
-    s.push_str(CSS);
+    s.push_str(super::css::CSS);
+    s.push_str(&super::heatmap::css());
     s.push_str("</style>\n</head>\n<body>\n<header>\n<h1>mbdbench report</h1>\n");
     s.push_str(&env_p(&page.env_line));
-    s.push_str(&format!("<p class=\"key\">{}</p>\n", prose(&page.key_text)));
+    s.push_str(
+        "<p class=\"key\">Every section is folded: open it on demand. Each family's plots are \
+         explained once, in its \"How to read\" block before its first case.</p>\n",
+    );
     if let Some(g) = &page.gate_summary {
         s.push_str(&format!(
             "<p class=\"gates\"><b>Gates:</b> {}.",
@@ -436,10 +456,21 @@ pub fn render(page: &Page) -> String {
     });
     s.push_str(".</p>\n</header>\n");
     if let Some(a) = &page.advice {
-        s.push_str(&super::advice::html(a));
+        let order: Vec<(String, &str)> = page
+            .cases
+            .iter()
+            .map(|c| (c.name.clone(), c.family))
+            .collect();
+        s.push_str(&super::advice::html(a, page.physical.as_ref(), &order));
     }
+    let explained = Explained::of(page);
+    let mut family = "";
     for c in &page.cases {
-        s.push_str(&case_section(c, &page.env_line));
+        if c.family != family {
+            family = c.family;
+            s.push_str(&explained.block(family));
+        }
+        s.push_str(&case_section(c, &page.env_line, &explained));
     }
     s.push_str("<script>");
     s.push_str(super::script::SCRIPT);
@@ -690,7 +721,7 @@ mod tests {
                     <div data-section=\"narrative\"></div><figure data-plot=\"p\"><figcaption>x</figcaption></figure></section>";
         let p = render_check(html);
         assert!(
-            p.iter().any(|s| s.contains("missing section matrix")),
+            p.iter().any(|s| s.contains("missing section heatmap")),
             "{p:?}"
         );
         assert!(!p.iter().any(|s| s.contains("missing section narrative")));

@@ -33,7 +33,9 @@ pub mod axes;
 pub mod chart;
 pub mod colour;
 pub mod convergence;
+pub mod css;
 pub mod data;
+pub mod explain;
 pub mod heatmap;
 pub mod html;
 pub mod markdown;
@@ -44,6 +46,7 @@ pub mod select;
 pub mod stability;
 pub mod style;
 pub mod svg_compact;
+pub mod svg_page;
 pub mod tables;
 pub mod timeseries;
 pub mod work_precision;
@@ -89,6 +92,8 @@ pub struct SceneSection {
     pub work_precision: Vec<Figure>,
     pub convergence: Vec<Figure>,
     pub timeseries: Vec<Figure>,
+    /// What the time-series plots draw (`timeseries::section_title`).
+    pub timeseries_title: String,
     pub matrix: tables::Table,
     /// The matrix as a heat map (shown open on the page).
     pub heat: heatmap::HeatMap,
@@ -100,6 +105,8 @@ pub struct SceneSection {
 #[derive(Debug, Clone)]
 pub struct CaseSection {
     pub name: String,
+    /// The family's `model` name (the table of contents groups cases by it).
+    pub family: &'static str,
     pub title: String,
     pub narrative: Vec<String>,
     pub across: Vec<Figure>,
@@ -127,6 +134,8 @@ pub struct Page {
     pub gate_summary: Option<GateSummary>,
     /// The recommendation, when given (`write_report`).
     pub advice: Option<crate::advise::Advice>,
+    /// The recommendation on the physical metric of the families that declare one.
+    pub physical: Option<crate::advise::Advice>,
 }
 
 /// The gate verdict of the page (the same rows and words as `mbdbench gate`).
@@ -280,6 +289,13 @@ pub fn build_page(
             });
         }
     }
+    // Families in the family table's order (rigid bodies first), then the case files' order.
+    views.sort_by_key(|v| {
+        crate::problem::FAMILIES
+            .iter()
+            .position(|f| std::ptr::eq(*f, v.family))
+            .unwrap_or(usize::MAX)
+    });
     let sections = views
         .iter()
         .map(|cv| {
@@ -287,32 +303,34 @@ pub fn build_page(
             let scenes = cv
                 .scenes
                 .iter()
-                .map(|sv| SceneSection {
-                    name: sv.name.clone(),
-                    work_precision: work_precision::plots(
-                        cv,
-                        sv,
-                        &foot,
-                        summary.env.timing.as_deref(),
-                    )
-                    .iter()
-                    .map(figure)
-                    .collect(),
-                    convergence: convergence::plots(cv, sv, &foot)
+                .map(|sv| {
+                    let timeseries = timeseries::plots(cv, sv, series_root, &foot);
+                    SceneSection {
+                        name: sv.name.clone(),
+                        work_precision: work_precision::plots(
+                            cv,
+                            sv,
+                            &foot,
+                            summary.env.timing.as_deref(),
+                        )
                         .iter()
                         .map(figure)
                         .collect(),
-                    timeseries: timeseries::plots(cv, sv, series_root, &foot)
-                        .iter()
-                        .map(figure)
-                        .collect(),
-                    matrix: tables::matrix(cv, sv, gate_rows),
-                    heat: heatmap::heatmap(cv, sv, &columns, gate_rows),
-                    variants: sv.variants.len(),
+                        convergence: convergence::plots(cv, sv, &foot)
+                            .iter()
+                            .map(figure)
+                            .collect(),
+                        timeseries_title: timeseries::section_title(cv.family, &timeseries),
+                        timeseries: timeseries.iter().map(figure).collect(),
+                        matrix: tables::matrix(cv, sv, gate_rows),
+                        heat: heatmap::heatmap(cv, sv, &columns, gate_rows),
+                        variants: sv.variants.len(),
+                    }
                 })
                 .collect();
             CaseSection {
                 name: cv.name.clone(),
+                family: cv.family.model,
                 title: cv.title.clone(),
                 narrative: narrative::paragraph(cv),
                 across: scenes::plots(cv, &foot).iter().map(figure).collect(),
@@ -334,6 +352,7 @@ pub fn build_page(
         cases: sections,
         gate_summary,
         advice: None,
+        physical: None,
     }
 }
 
@@ -380,6 +399,9 @@ pub struct Extras<'a> {
     pub stability: Option<stability::Source<'a>>,
     /// The recommendation (`crate::advise`): the first thing on the page and in `summary.md`.
     pub advice: Option<crate::advise::Advice>,
+    /// The recommendation on the physical metric (`advice::physical_specs`), when a family
+    /// declares one: its cases' blocks rank against the physical reference first.
+    pub physical: Option<crate::advise::Advice>,
     /// Also write every plot as `svg/<case>/...svg` (`mbdbench report --svg`). Off by default:
     /// the page inlines every plot, and the files would double the plots' bytes in a report
     /// that must stay within its size budget.
@@ -405,7 +427,20 @@ pub fn write_report(
         extras.gate_rows,
         extras.stability,
     );
+    // "What this shows" uses the targets the recommendation offers (never one it refuses).
+    if let Some(a) = &extras.advice {
+        let views = data::case_views(summary, cases);
+        for c in &mut page.cases {
+            let view = views.iter().find(|v| v.name == c.name);
+            let advice = a.cases.iter().find(|x| x.case == c.name);
+            if let (Some(cv), Some(ca)) = (view, advice) {
+                let offered: Vec<f64> = ca.targets.iter().map(|t| t.target).collect();
+                c.narrative = narrative::paragraph_with(cv, Some(&offered));
+            }
+        }
+    }
     page.advice = extras.advice;
+    page.physical = extras.physical;
     let mut staging = crate::output::Staging::begin(out, crate::output::Writer::Report)
         .map_err(ReportError::Output)?;
     let mut write = |rel: &str, bytes: &[u8]| -> Result<PathBuf, ReportError> {

@@ -1,7 +1,9 @@
 //! "What this shows": a paragraph per case generated only from the summary's numbers, never
 //! from hand-written claims. Each sentence comes from a computed fact:
 //!
-//! - per scene, the cheapest completed run whose primary error is `<= TARGET` (1e-6), by RHS
+//! - per scene, the cheapest completed run whose primary error is at most the tightest target
+//!   the recommendation offers for the case (`paragraph_with`: `advise`'s offered targets;
+//!   `TARGET`, 1e-6, when there is no recommendation), by RHS
 //!   evaluations (deterministic) and by wall time (`wall_s.min`), or the smallest error reached
 //!   when none gets there; a control scene (`control = true`) is marked as such;
 //! - the failures, counted by kind, with the parameterizations and integrators involved;
@@ -163,12 +165,15 @@ fn join_names(mut names: Vec<String>) -> String {
     names.join(", ")
 }
 
-fn scene_sentence(cv: &CaseView, sv: &SceneView) -> String {
+fn scene_sentence(cv: &CaseView, sv: &SceneView, target: Target) -> String {
     let control = cv
         .case
         .and_then(|c| c.scene(&sv.name))
         .is_some_and(|s| s.control);
-    let sentence = scene_facts(cv, sv);
+    let sentence = match target {
+        Target::At(t, offered) => scene_facts(cv, sv, t, offered),
+        Target::NoneOffered => no_target_facts(cv, sv),
+    };
     if control {
         format!(
             "(Control scene, left out of the recommendation: a result known by construction.) \
@@ -179,15 +184,48 @@ fn scene_sentence(cv: &CaseView, sv: &SceneView) -> String {
     }
 }
 
-fn scene_facts(cv: &CaseView, sv: &SceneView) -> String {
-    let c = cheapest(sv, &cv.primary, TARGET);
+/// The error a scene sentence names the cheapest run reaching.
+#[derive(Debug, Clone, Copy)]
+enum Target {
+    /// A target; `true` when it is the tightest the recommendation offers.
+    At(f64, bool),
+    /// The recommendation offers no target for the case (all below its references' claims).
+    NoneOffered,
+}
+
+/// A scene's sentence when no target is offered: the smallest error reached, and why no
+/// cheapest run is named.
+fn no_target_facts(cv: &CaseView, sv: &SceneView) -> String {
+    let p = &cv.primary;
+    match cheapest(sv, p, f64::NEG_INFINITY).best {
+        Some((r, e)) => format!(
+            "Scene {}: the recommendation offers no target error for this case (each lies \
+             below 100x its references' accuracy claim); the smallest {p} was {} by {}.",
+            sv.name,
+            num(e),
+            run_name(r)
+        ),
+        None => format!(
+            "Scene {}: no completed run has a value of {p} (no data).",
+            sv.name
+        ),
+    }
+}
+
+fn scene_facts(cv: &CaseView, sv: &SceneView, target: f64, offered: bool) -> String {
+    let which = if offered {
+        " (the tightest target the recommendation offers)"
+    } else {
+        ""
+    };
+    let c = cheapest(sv, &cv.primary, target);
     let p = &cv.primary;
     let ties = c.by_rhs.map_or(0, |a| {
         sv.runs()
             .filter(|r| {
                 r.status == Status::Ok
                     && r.stats.rhs_evals == a.stats.rhs_evals
-                    && error(r, p).is_some_and(|e| e <= TARGET)
+                    && error(r, p).is_some_and(|e| e <= target)
             })
             .count()
     });
@@ -198,10 +236,10 @@ fn scene_facts(cv: &CaseView, sv: &SceneView) -> String {
     };
     match (c.by_rhs, c.by_wall, c.best) {
         (Some(a), Some(b), _) => format!(
-            "Scene {}: the cheapest run reaching {p} <= {} is {} with {} RHS evaluations ({p} \
-             {}{tie}); by wall time, {} in {} s ({p} {}).",
+            "Scene {}: the cheapest run reaching {p} <= {}{which} is {} with {} RHS evaluations \
+             ({p} {}{tie}); by wall time, {} in {} s ({p} {}).",
             sv.name,
-            num(TARGET),
+            num(target),
             run_name(a),
             a.stats.rhs_evals,
             num(error(a, p).unwrap_or(f64::NAN)),
@@ -210,18 +248,18 @@ fn scene_facts(cv: &CaseView, sv: &SceneView) -> String {
             num(error(b, p).unwrap_or(f64::NAN)),
         ),
         (Some(a), None, _) => format!(
-            "Scene {}: the cheapest run reaching {p} <= {} is {} with {} RHS \
+            "Scene {}: the cheapest run reaching {p} <= {}{which} is {} with {} RHS \
              evaluations ({p} {}{tie}); no wall time was recorded.",
             sv.name,
-            num(TARGET),
+            num(target),
             run_name(a),
             a.stats.rhs_evals,
             num(error(a, p).unwrap_or(f64::NAN)),
         ),
         (None, _, Some((r, e))) => format!(
-            "Scene {}: no run reached {p} <= {}; the smallest was {} by {}.",
+            "Scene {}: no run reached {p} <= {}{which}; the smallest was {} by {}.",
             sv.name,
-            num(TARGET),
+            num(target),
             num(e),
             run_name(r)
         ),
@@ -400,7 +438,27 @@ fn order_sentence(cv: &CaseView) -> Option<String> {
 
 /// The paragraph of a case, as sentences.
 pub fn paragraph(cv: &CaseView) -> Vec<String> {
-    let mut out: Vec<String> = cv.scenes.iter().map(|s| scene_sentence(cv, s)).collect();
+    paragraph_with(cv, None)
+}
+
+/// The paragraph of a case whose recommendation offers the targets `offered` (`advise`'s,
+/// largest first or in any order): its scene sentences name the cheapest run reaching the
+/// tightest of them, or, when none is offered, the smallest error reached. Without a
+/// recommendation (`None`), they use `TARGET`.
+pub fn paragraph_with(cv: &CaseView, offered: Option<&[f64]>) -> Vec<String> {
+    let target = match offered {
+        None => Target::At(TARGET, false),
+        Some(list) => list
+            .iter()
+            .copied()
+            .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.min(t))))
+            .map_or(Target::NoneOffered, |t| Target::At(t, true)),
+    };
+    let mut out: Vec<String> = cv
+        .scenes
+        .iter()
+        .map(|s| scene_sentence(cv, s, target))
+        .collect();
     out.push(failure_sentence(cv));
     out.extend(euler_sentences(cv));
     out.extend(order_sentence(cv));
@@ -535,5 +593,22 @@ mod tests {
             "{}",
             text[0]
         );
+    }
+
+    /// With a recommendation, the scene sentences use its tightest offered target, never one
+    /// it refuses; with none offered they name no cheapest run.
+    #[test]
+    fn offered_targets() {
+        let s = fixture::summary();
+        let views = data::case_views(&s, &[]);
+        let text = paragraph_with(&views[0], Some(&[1e-2, 1e-4])).join(" ");
+        assert!(
+            text.contains("<= 1e-4 (the tightest target the recommendation offers)"),
+            "{text}"
+        );
+        assert!(!text.contains("<= 1e-6"), "{text}");
+        let none = paragraph_with(&views[0], Some(&[])).join(" ");
+        assert!(none.contains("offers no target error"), "{none}");
+        assert!(!none.contains("the cheapest run reaching"), "{none}");
     }
 }

@@ -182,10 +182,12 @@ pub fn plot(cv: &CaseView, sel: &Panel, m: Measure, footer: &str) -> Plot {
     let (id, y_label, what) = match m {
         Measure::Primary => (
             "scenes_error",
-            cv.primary.clone(),
+            super::data::with_unit(cv, &cv.primary),
             format!("{} per scene", cv.primary),
         ),
-        Measure::Metric { name, id, what } => (id, name.to_string(), what.to_string()),
+        Measure::Metric { name, id, what } => {
+            (id, super::data::with_unit(cv, name), what.to_string())
+        }
         Measure::RhsEvals => (
             "scenes_rhs",
             "RHS evaluations".to_string(),

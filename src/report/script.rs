@@ -1,10 +1,13 @@
 //! The page's one inline script (no source, no network, no event-handler attributes): it
 //! sorts a heat map by the column whose name is clicked (best first, a second click worst
-//! first; the `param` column restores registry order), reading the sort keys the Rust code
-//! wrote (`data-k`), and, only when the URL hash is `#selftest`, appends a
+//! first; the `param` column restores registry order), reading the values the cells show
+//! (their fill class says a value is on its column's scale, `hfail`/`hna` failed, null or n/a;
+//! the first cell's `data-k` is the registry position), and, only when the URL hash is `#selftest`, appends a
 //! `<pre id="selftest">` with the layout facts the CI browser check reads: the recommendation
-//! table's bounding box in page pixels (`advice top= bottom= left= right=`, or `advice none`)
-//! and per inline plot its declared line count and its drawn series (`panel <case> <plot>
+//! table's bounding box in page pixels (`advice top= bottom= left= right=`, or `advice none`),
+//! each case's recommendation block (`rec <case> top= bottom= height=`), the page's size
+//! (`page height= width= viewport=WxH svgs=`, the document's scroll height and width) and per
+//! inline plot its declared line count and its drawn series (`panel <case> <plot>
 //! lines=N series=M`).
 //!
 //! Invariants: the page reads the same without it (the tables are in registry order, every
@@ -13,9 +16,20 @@
 //! tag tokenizer reads no tag inside it.
 pub const SCRIPT: &str = r#"
 (function () {
-  function key(td) {
-    var k = td ? td.getAttribute('data-k') : null;
-    return k === null ? 9 : parseFloat(k);
+  // A cell's sort key [group, value]: 0 a coloured value (negated where larger is better),
+  // 1 a value off its column's scale, 2 failed, 3 null, 4 n/a; a cell with data-k (the
+  // row's registry position) is group 0 with that value.
+  function key(td, larger) {
+    if (!td) { return [9, 0]; }
+    var k = td.getAttribute('data-k');
+    if (k !== null) { return [0, parseFloat(k)]; }
+    var cls = ' ' + td.className + ' ';
+    if (cls.indexOf(' hfail ') !== -1) { return [2, 0]; }
+    if (cls.indexOf(' hna ') !== -1) { return [td.textContent.indexOf('null') !== -1 ? 3 : 4, 0]; }
+    var v = parseFloat(td.textContent.replace(/[^0-9eE.+-]/g, ''));
+    if (isNaN(v)) { return [4, 0]; }
+    if (/ c[0-9]+ /.test(cls)) { return [0, larger ? -v : v]; }
+    return [1, 0];
   }
   var tables = document.querySelectorAll('table.heatmap');
   for (var t = 0; t < tables.length; t++) {
@@ -31,13 +45,15 @@ pub const SCRIPT: &str = r#"
             var body = table.tBodies[0];
             var rows = Array.prototype.slice.call(body.rows);
             var d = dir[c] = (dir[c] === 1 ? -1 : 1);
+            var larger = th.textContent.indexOf('larger better') !== -1;
             rows.sort(function (a, b) {
-              var x = key(a.cells[c]), y = key(b.cells[c]);
-              var first = key(a.cells[0]) - key(b.cells[0]);
+              var x = key(a.cells[c], larger), y = key(b.cells[c], larger);
+              var first = key(a.cells[0])[1] - key(b.cells[0])[1];
               if (c === 0) { return first; }
-              var xn = x <= 1.5, yn = y <= 1.5;
+              var xn = x[0] !== 2 && x[0] !== 3 && x[0] !== 4 && x[0] !== 9;
+              var yn = y[0] !== 2 && y[0] !== 3 && y[0] !== 4 && y[0] !== 9;
               if (xn !== yn) { return xn ? -1 : 1; }
-              var diff = xn ? d * (x - y) : x - y;
+              var diff = xn ? d * (x[0] - y[0] || x[1] - y[1]) : x[0] - y[0];
               return diff !== 0 ? diff : first;
             });
             for (var i = 0; i < rows.length; i++) { body.appendChild(rows[i]); }
@@ -48,7 +64,7 @@ pub const SCRIPT: &str = r#"
   }
   if (location.hash !== '#selftest') { return; }
   var out = [];
-  var a = document.querySelector('[data-section="advice"] table');
+  var a = document.querySelector('[data-section="advice"]');
   if (a) {
     var r = a.getBoundingClientRect();
     out.push('advice top=' + Math.round(r.top + window.scrollY) + ' bottom=' +
@@ -57,6 +73,18 @@ pub const SCRIPT: &str = r#"
   } else {
     out.push('advice none');
   }
+  var recs = document.querySelectorAll('[data-rec]');
+  for (var q = 0; q !== recs.length; q++) {
+    var b = recs[q].getBoundingClientRect();
+    out.push('rec ' + recs[q].getAttribute('data-rec') + ' top=' +
+      Math.round(b.top + window.scrollY) + ' bottom=' + Math.round(b.bottom + window.scrollY) +
+      ' height=' + Math.round(b.height));
+  }
+  var de = document.documentElement;
+  out.push('page height=' + Math.max(de.scrollHeight, document.body.scrollHeight) +
+    ' width=' + Math.max(de.scrollWidth, document.body.scrollWidth) + ' viewport=' +
+    window.innerWidth + 'x' + window.innerHeight + ' svgs=' +
+    document.querySelectorAll('svg').length);
   var svgs = document.querySelectorAll('svg[data-lines]');
   for (var s = 0; s < svgs.length; s++) {
     var fig = svgs[s].closest('figure');
@@ -86,7 +114,8 @@ mod tests {
             !b.windows(2)
                 .any(|w| w[0] == b'<' && (w[1].is_ascii_alphabetic() || w[1] == b'/'))
         );
-        for bad in ["http", "url(", "@import", "src", "href"] {
+        // No backtick either: the page holds no literal markdown.
+        for bad in ["http", "url(", "@import", "src", "href", "`"] {
             assert!(!SCRIPT.contains(bad), "{bad}");
         }
         assert!(super::super::html::start_tags(SCRIPT).is_empty());

@@ -135,8 +135,9 @@ pub fn failures(cv: &CaseView) -> Table {
         } else {
             format!(
                 "{n} runs ended with a typed failure; one row per scene, variant and kind, the \
-                 failing ladder values with their failure times t (s) in the same order, and \
-                 the message of the finest one."
+                 failing ladder values with their failure points t in the same order (seconds \
+                 for a dynamic scene; a static scene's load factor, a cyclic protocol's \
+                 increment, as the plots' axes say), and the message of the finest one."
             )
         },
         header: [
@@ -146,7 +147,7 @@ pub fn failures(cv: &CaseView) -> Table {
             "formulation",
             "step",
             "kind",
-            "t (s)",
+            "t",
             "message",
         ]
         .map(String::from)

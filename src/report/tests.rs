@@ -106,13 +106,6 @@ fn page_is_self_contained_and_complete() {
             assert!(sec.contains(&format!("<svg data-lines=\"{}\"", d.lines)));
         }
     }
-    // The heat maps are open (outside any <details>), one per scene.
-    let heat = sec.find("data-section=\"heatmaps\"").expect("heat maps");
-    assert!(!sec[..heat].contains("<details"));
-    assert_eq!(
-        sec.matches("<table class=\"heatmap\">").count(),
-        fixture::SCENES.len()
-    );
     // No literal markdown reaches the page.
     for md in ["**", "`", "]("] {
         assert!(!html.contains(md), "{md} in the page");
@@ -124,26 +117,13 @@ fn page_is_self_contained_and_complete() {
         assert!(sec.contains(&format!("data-section=\"{kind}\"")), "{kind}");
     }
     let env = env_line(&s);
-    for part in [
-        "abc1234",
-        "2026-01-02T03:04:05Z",
-        "rustc 1.95.0",
-        "Test CPU",
-        "Test OS",
-    ] {
-        assert!(env.contains(part), "{part}");
-    }
-    assert!(
-        sec.contains(&html::esc(&env)),
-        "env line in the case section"
-    );
     let md = std::fs::read_to_string(&files.summary_md).unwrap();
     assert!(md.contains(&env));
     for title in [
         "nine_spring: failed runs",
         "nine_spring: largest completed ladder step",
-        "nine_spring / two_angles: variants x metrics",
-        "nine_spring / large: variants x metrics",
+        "nine_spring / two_angles: heat map of variants x metrics",
+        "nine_spring / large: heat map of variants x metrics",
         "nine_spring: not applicable",
     ] {
         assert!(html.contains(title), "{title}");
@@ -434,4 +414,92 @@ fn svg_files_only_on_request() {
         "the page still inlines its plots"
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Pseudo-time is labelled as what it is: a static scene's `t` is the load factor and a
+/// cyclic scene's the protocol's increments (never seconds), a dynamic scene's `t` is in
+/// seconds; an RMS metric is not captioned as a max.
+#[test]
+fn stepped_parameter_and_aggregate_labels() {
+    let cases = crate::case::embedded().unwrap();
+    let mut seen = std::collections::BTreeMap::new();
+    for c in &cases {
+        let f = crate::problem::family_of(c);
+        for s in &c.scenes {
+            let (t, step) = (f.figures.t_axis)(s);
+            seen.insert((c.name.clone(), s.name.clone()), (t, step));
+        }
+    }
+    let of = |case: &str| {
+        seen.iter()
+            .filter(|((c, _), _)| c == case)
+            .map(|(_, v)| *v)
+            .collect::<Vec<_>>()
+    };
+    assert!(of("fiber_column_static").iter().all(|(t, s)| {
+        t.starts_with("load factor") && s.contains("load factor") && !t.contains("(s)")
+    }));
+    assert!(of("fiber_column_cyclic").iter().all(|(t, s)| {
+        t.starts_with("protocol increment") && s.contains("protocol") && !s.contains("(s)")
+    }));
+    for case in ["fiber_column_dynamic", "nine_spring", "flexible_beam"] {
+        assert!(!of(case).is_empty(), "{case}");
+        assert!(
+            of(case)
+                .iter()
+                .all(|(t, s)| *t == "t (s)" && *s == "step dt (s)")
+        );
+    }
+    assert_eq!(
+        data::aggregate("base_shear_error_rms"),
+        " (RMS over the run)"
+    );
+    assert_eq!(data::aggregate("rotation_error_max"), " (max over the run)");
+    assert_eq!(data::aggregate("tip_error"), "");
+}
+
+/// Every part of a case but its narrative is folded and none opens by itself (the heat maps,
+/// one per scene, each scene's plots, the tables), and the case states the environment.
+#[test]
+fn case_parts_are_folded() {
+    let s = fixture::summary();
+    let cases = crate::case::embedded().unwrap();
+    let page = build_page(&s, std::path::Path::new("/nonexistent"), &cases, None, None);
+    let html = html::render(&page);
+    let sec = case_html(&html, fixture::CASE);
+    // Every part of the case but its narrative is folded and none opens by itself: the heat
+    // maps (one per scene), each scene's plots, the tables.
+    let heat = sec.find("data-section=\"heatmaps\"").expect("heat maps");
+    assert!(
+        sec[..heat].ends_with("<details class=\"part\" "),
+        "{}",
+        &sec[..heat]
+    );
+    let narrative = sec.find("data-section=\"narrative\"").unwrap();
+    assert!(!sec[..narrative].contains("<details"));
+    for t in html::start_tags(sec).iter().filter(|t| t.name == "details") {
+        assert!(!t.attrs.iter().any(|(n, _)| n == "open"), "{t:?}");
+    }
+    assert_eq!(
+        sec.matches("<details class=\"scene\"").count(),
+        fixture::SCENES.len()
+    );
+    assert_eq!(
+        sec.matches("<table class=\"heatmap\">").count(),
+        fixture::SCENES.len()
+    );
+    let env = env_line(&s);
+    for part in [
+        "abc1234",
+        "2026-01-02T03:04:05Z",
+        "rustc 1.95.0",
+        "Test CPU",
+        "Test OS",
+    ] {
+        assert!(env.contains(part), "{part}");
+    }
+    assert!(
+        sec.contains(&html::esc(&env)),
+        "env line in the case section"
+    );
 }

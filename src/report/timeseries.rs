@@ -27,6 +27,64 @@ use crate::summary::{Record, Status};
 
 pub use crate::problem::figures::Quantity;
 
+/// The title of a scene's time-series section: the quantities of its family's declaration that
+/// `plots` draw, in order, "along the run" (over time, or over a static scene's load path).
+pub fn section_title(family: &crate::problem::Family, plots: &[Plot]) -> String {
+    let mut names: Vec<String> = vec![];
+    for (q, _) in family.figures.timeseries {
+        let (id, name) = match q {
+            Quantity::Energy => ("energy", "energy drift".to_string()),
+            Quantity::Balance { .. } => ("balance", "energy balance".to_string()),
+            Quantity::Constraint { .. } => ("constraint", "constraint residual".to_string()),
+            Quantity::Track {
+                id,
+                y_label,
+                x: None,
+                ..
+            } => (*id, strip_unit(y_label)),
+            Quantity::Track {
+                id,
+                y_label,
+                x: Some((_, _, x_label)),
+                ..
+            } => (
+                *id,
+                format!("{} against {}", strip_unit(y_label), strip_unit(x_label)),
+            ),
+        };
+        let drawn = plots.iter().any(|p| {
+            p.id.rsplit_once('/')
+                .map_or(p.id.as_str(), |(_, plot)| plot)
+                .starts_with(&format!("{id}_"))
+        });
+        if drawn && !names.contains(&name) {
+            names.push(name);
+        }
+    }
+    if names.is_empty() {
+        return "along the run".into();
+    }
+    format!("{} along the run", names.join(", "))
+}
+
+/// "over time" where the scene's `t` is time in seconds, else "along the run" (a load
+/// factor, a protocol's increments: `data::t_labels`).
+fn over(cv: &CaseView, scene: &str) -> &'static str {
+    if data::t_labels(cv, scene).0 == crate::problem::figures::seconds_label() {
+        "over time"
+    } else {
+        "along the run"
+    }
+}
+
+/// An axis label without its unit (`u_top (m)` -> `u_top`).
+fn strip_unit(label: &str) -> String {
+    label
+        .split_once(" (")
+        .map_or(label, |(name, _)| name)
+        .to_string()
+}
+
 /// The time-series plots of a scene: each quantity and panel of each selection the family
 /// declares (panels that draw no variant of the scene are left out), and each group of a
 /// `Quantity::Track`.
@@ -80,9 +138,13 @@ pub fn plot(
     sel: &Panel,
     footer: &str,
 ) -> Option<Plot> {
+    let balance_label;
     let (id, name, y_label) = match q {
         Quantity::Energy => ("energy", "energy drift", "|E - E0| / max(|E0|, E_scale)"),
-        Quantity::Balance { .. } => ("balance", "energy balance", "|K + U + D - W| / E_scale"),
+        Quantity::Balance { books, .. } => {
+            balance_label = format!("{books} / E_scale");
+            ("balance", "energy balance", balance_label.as_str())
+        }
         Quantity::Constraint { .. } => ("constraint", "constraint residual", "constraint residual"),
         Quantity::Track { .. } => return None,
     };
@@ -152,10 +214,9 @@ pub fn plot(
     }
     let mut caption = match q {
         Quantity::Constraint { what } => what.to_string(),
-        Quantity::Balance { what } => format!(
-            "The energy balance |K + U + D - W| over the case's energy scale ({} J) at the \
-             score times: kinetic, recoverable strain and dissipated energy against the input \
-             work. {what} ",
+        Quantity::Balance { what, books } => format!(
+            "The energy balance {books} over the case's energy scale E_scale = {} J at the \
+             score times. {what} ",
             cv.energy_scale.map(data::num).unwrap_or_else(|| "1".into())
         ),
         _ => format!(
@@ -192,8 +253,14 @@ pub fn plot(
     }
     Some(Plot {
         id: format!("{}/{id}_{}", sv.name, sel.id),
-        title: format!("{}/{}: {name} over time ({})", cv.name, sv.name, sel.short),
-        x_label: "t (s)".into(),
+        title: format!(
+            "{}/{}: {name} {} ({})",
+            cv.name,
+            sv.name,
+            over(cv, &sv.name),
+            sel.short
+        ),
+        x_label: data::t_labels(cv, &sv.name).0.into(),
         y_label: y_label.into(),
         x: Scale::Linear,
         y: Scale::Log,
@@ -330,15 +397,18 @@ fn track_plot(
         id: format!("{}/{id}_{}", sv.name, group.id),
         title: match x {
             None => format!(
-                "{}/{}: {column} over time ({})",
-                cv.name, sv.name, group.label
+                "{}/{}: {column} {} ({})",
+                cv.name,
+                sv.name,
+                over(cv, &sv.name),
+                group.label
             ),
             Some((x_col, ..)) => format!(
                 "{}/{}: {column} against {x_col} ({})",
                 cv.name, sv.name, group.label
             ),
         },
-        x_label: x.map_or("t (s)", |x| x.2).into(),
+        x_label: x.map_or(data::t_labels(cv, &sv.name).0, |x| x.2).into(),
         y_label: y_label.into(),
         x: Scale::Linear,
         y: Scale::Linear,

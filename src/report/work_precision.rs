@@ -131,17 +131,18 @@ pub fn plot(
             sel.short
         ),
         x_label: cost.label().into(),
-        y_label: cv.primary.clone(),
+        y_label: super::data::with_unit(cv, &cv.primary),
         x: super::axes::Scale::Log,
         y: super::axes::Scale::Log,
         lines,
         fails,
         legend: Legend::Factored,
         caption: format!(
-            "Work-precision: {} (max over the run) {what}, each line through the variant's \
+            "Work-precision: {}{} {what}, each line through the variant's \
              whole ladder (fixed steps coarse to fine, tolerances loose to tight). {} Lower \
              left is better; marks in the red band are runs that failed, at the work they did.",
             cv.primary,
+            super::data::aggregate(&cv.primary),
             sel.drawn(cv.family, false)
         ),
         footer: footer.into(),

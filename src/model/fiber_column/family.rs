@@ -52,6 +52,22 @@ const FORMS_DB: FormulationGroup = FormulationGroup {
     ],
 };
 
+/// The stepped parameter of a column scene: the load factor (static), the protocol's
+/// displacement increments (cyclic), time in seconds (the pulse).
+fn t_axis(scene: &crate::case::Scene) -> (&'static str, &'static str) {
+    match scene
+        .physics::<super::case::ColumnScene>()
+        .map(|s| s.loading.kind())
+    {
+        Some("static") => ("load factor t (1)", "load step dt (load factor)"),
+        Some("cyclic") => (
+            "protocol increment t (count)",
+            "step dt (protocol increments)",
+        ),
+        _ => crate::problem::figures::seconds(scene),
+    }
+}
+
 const FIGURES: Figures = Figures {
     key_text: "How to read the plots: the so3 chart, one panel per formulation, colour = \
         solution algorithm or time scheme. Static scenes step the load factor t (0 to 1), cyclic scenes the \
@@ -92,7 +108,9 @@ const FIGURES: Figures = Figures {
         ),
         (
             Quantity::Balance {
-                what: "The pulse's books (the static and cyclic scenes keep none): every \
+                books: "|K + U + D - W|",
+                what: "Kinetic, recoverable strain and dissipated energy against the input \
+                    work. The pulse's books (the static and cyclic scenes keep none): every \
                     scheme's input and damping work by one trapezoid rule along its own \
                     discrete path, the fibres' work by the trapezoid rule over their strain \
                     increments. The energy-consistent midpoint rule closes the balance by \
@@ -107,6 +125,8 @@ const FIGURES: Figures = Figures {
     param_groups: &[],
     line_styles: "every line solid (one formulation per panel)",
     draw_failed: false,
+    physical: None,
+    t_axis,
 };
 
 const fn metric(name: &'static str, unit: &'static str, reference_error: bool) -> Metric {

@@ -106,4 +106,6 @@ pub const FIGURES: Figures = Figures {
     ],
     line_styles: "body formulation solid, spatial dashed",
     draw_failed: false,
+    physical: None,
+    t_axis: crate::problem::figures::seconds,
 };

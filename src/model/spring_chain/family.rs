@@ -35,6 +35,8 @@ const FIGURES: Figures = Figures {
     param_groups: &[],
     line_styles: "chain_nodal solid, chain_modal dashed",
     draw_failed: false,
+    physical: None,
+    t_axis: crate::problem::figures::seconds,
 };
 
 /// The spring-chain family.
