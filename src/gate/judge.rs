@@ -17,7 +17,24 @@ pub(super) fn check_label(c: &Check) -> String {
 }
 
 /// `<= t`, `>= t` or `before t s`.
-pub(super) fn threshold_text(c: &Check) -> String {
+/// How a gate names the scene's `t` after a number: ` s` where the family declares it in
+/// seconds (`Figures::t_axis`), else the declared pseudo-time in words (a static scene's
+/// load factor, a cyclic scene's protocol increment), never seconds.
+pub(super) fn t_unit(c: &crate::case::Case, scene: &str) -> String {
+    let family = crate::problem::family_of(c);
+    let label = c
+        .scene(scene)
+        .map_or(crate::problem::figures::seconds_label(), |s| {
+            (family.figures.t_axis)(s).0
+        });
+    if label == crate::problem::figures::seconds_label() {
+        " s".into()
+    } else {
+        format!(" ({label})")
+    }
+}
+
+pub(super) fn threshold_text(c: &Check, unit: &str) -> String {
     match c {
         Check::Bound {
             bound: Bound::Max(t),
@@ -29,7 +46,7 @@ pub(super) fn threshold_text(c: &Check) -> String {
         } => format!(">= {t:e}"),
         Check::Expect { after, before, .. } => {
             format!(
-                "after {}, before {} s",
+                "after {}, before {}{unit}",
                 time_text(*after),
                 time_text(*before)
             )
@@ -92,11 +109,11 @@ pub(super) fn judge_expect(
     row: &mut GateRow,
     r: &Record,
     kind: FailureKind,
-    after: f64,
-    before: f64,
+    (after, before): (f64, f64),
+    unit: &str,
 ) {
     let expected = format!(
-        "expected {} after {} and before {} s",
+        "expected {} after {} and before {}{unit}",
         kind.name(),
         time_text(after),
         time_text(before)

@@ -43,7 +43,7 @@ use crate::case::gate::Check;
 use crate::case::{self, Case, Gate};
 use crate::problem::{Problem, Variant};
 use crate::summary::{Record, Status, Summary};
-use judge::{check_label, judge_bound, judge_expect, outcome_text, threshold_text};
+use judge::{check_label, judge_bound, judge_expect, outcome_text, t_unit, threshold_text};
 
 mod judge;
 pub mod load;
@@ -682,7 +682,7 @@ fn judge(
         metric: check_label(&g.check),
         value: None,
         outcome: None,
-        threshold: threshold_text(&g.check),
+        threshold: threshold_text(&g.check, &t_unit(c, p.problem.scene())),
         verdict: Verdict::Fail,
         note: String::new(),
         ratio: None,
@@ -712,7 +712,13 @@ fn judge(
             kind,
             after,
             before,
-        } => judge_expect(&mut row, r, *kind, *after, *before),
+        } => judge_expect(
+            &mut row,
+            r,
+            *kind,
+            (*after, *before),
+            &t_unit(c, p.problem.scene()),
+        ),
     }
     row
 }
