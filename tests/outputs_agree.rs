@@ -1,5 +1,6 @@
 //! Outputs that never disagree, through the binary on the quick tier of nine_spring: the
-//! report's gate line is `mbdbench gate`'s last line on the same files; gates outside the
+//! report's gate line is the last line of `mbdbench gate --baseline` with the committed
+//! baseline on the same files; gates outside the
 //! run's selection and stability gates without `stability.json` are skipped and counted
 //! (failing under `--require-stability`); `gate --case/--scene` gate a subset and the wrong
 //! tier is bad input; a filtered run into a folder holding a broader run merges into it
@@ -84,6 +85,12 @@ fn report_gate_and_filtered_runs_agree() {
     let o = mbdbench(&["gate", "--summary", ss, "--quick"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     assert!(text(&o).contains("not run: outside the run's selection (--case nine_spring)"));
+    // The report compares a quick summary with the committed baseline, as `gate
+    // --baseline` does: its line is that gate's.
+    let baseline = Path::new(env!("CARGO_MANIFEST_DIR")).join("reports/baseline/quick.json");
+    let b = baseline.to_str().unwrap();
+    let o = mbdbench(&["gate", "--summary", ss, "--quick", "--baseline", b]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     let gate_line = last_line(&o);
     let r = mbdbench(&["report", "--summary", ss]);
     assert!(r.status.success(), "{}", text(&r));
@@ -149,7 +156,7 @@ fn report_gate_and_filtered_runs_agree() {
     assert_eq!(merged.selection, s.selection);
     assert!(merged.records.iter().any(|r| r.key.scene == "large"));
     assert!(d.join("index.html").is_file(), "the report is regenerated");
-    let o = mbdbench(&["gate", "--summary", ss, "--quick"]);
+    let o = mbdbench(&["gate", "--summary", ss, "--quick", "--baseline", b]);
     assert_eq!(page_gate_line(&d), last_line(&o));
 
     // A full-tier run cannot merge into the quick one: it writes beside it and says where;

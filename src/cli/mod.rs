@@ -439,7 +439,15 @@ fn cmd_report(
         crate::tell!("warning: {e}; the report is written without the stability study");
         stability = None;
     }
-    let rows = match crate::gate::evaluate(&cases, &summary, stability.as_ref(), &opts) {
+    let mut rows = crate::gate::evaluate(&cases, &summary, stability.as_ref(), &opts);
+    // The committed baseline is a default, not a request: a summary it cannot be compared
+    // with (another catalogue, no run in common) gets the verdict without it, and says so.
+    if let (Err(e), None, Some(_)) = (&rows, baseline, &opts.baseline) {
+        crate::tell!("warning: {e}; the report's verdict is made without a baseline");
+        opts.baseline = None;
+        rows = crate::gate::evaluate(&cases, &summary, stability.as_ref(), &opts);
+    }
+    let rows = match rows {
         Ok(rows) => Some(rows),
         Err(e) => {
             crate::tell!("warning: gates not evaluated for the report: {e}");
