@@ -111,8 +111,8 @@ fn opening(common: &Common, out: &std::path::Path, full_stability: bool) -> Resu
     }
     crate::say!(
         "  Ctrl-C at any moment leaves {} as it was: nothing half-written, nothing mixed.\n  \
-         A first look takes about 35 s: `mbdbench run --quick`; `mbdbench --help` lists the \
-         commands.\n",
+         A first look, the quick tier's short ladders: `mbdbench run --quick`; `mbdbench --help` \
+         lists the commands.\n",
         out.display()
     );
     Ok(())
