@@ -35,15 +35,12 @@ fn advice_holds_against_the_summary() {
     let summary = mbdbench::gate::load_summary(&out.join("summary.json")).unwrap();
     let cases = mbdbench::case::embedded().unwrap();
     let root = default_references();
-    let claim = |c: &mbdbench::case::Case, scene: &str| {
-        let s = c.scene(scene)?;
-        let mut p = (mbdbench::problem::family_of(c).compile)(c, s).ok()?;
-        p.attach_reference(&root).ok()?;
-        p.accuracy_claim(&c.primary_metric)
+    let reference = |c: &mbdbench::case::Case, scene: &str| {
+        advise::stored_reference(&root, c, scene, &c.primary_metric, advise::Claim::Accuracy)
     };
     let advice = advise::advise(
         &summary,
-        &advise::specs(&cases, &claim),
+        &advise::specs(&cases, &reference),
         &Options::default(),
     );
     assert_eq!(advice.cases.len(), 2);

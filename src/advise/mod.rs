@@ -32,7 +32,9 @@
 //! metric, unit, scenes, controls, targets: [{target, winner, runner_up, gap, tie, by_time, note}],
 //! skipped_targets: [{target, reason}], avoid: [{param, integrator, formulation, scene,
 //! reason}], robustness: [{scene, param, integrator, formulation, stable, accurate,
-//! limited_by}]}]}` (`stable`, `accurate`: `{dt}` or `{tol}` or null) where a pick is
+//! limited_by}], references: [{scene, reference: {integrator, formulation, step, step_unit,
+//! made_by}, agreement, text}]}]}` (`references` only where a scene's reference is itself
+//! one of the variants, `reference.rs`; `stable`, `accurate`: `{dt}` or `{tol}` or null) where a pick is
 //! `{param, integrator, formulation, settings: {scene: {dt} | {tol}}, cost, rhs_evals,
 //! newton_iters, wall_s}` (`wall_s`: the sum of the chosen runs' median wall
 //! times, null when a run was not timed). Absent winners are null.
@@ -63,12 +65,13 @@
 //!     fits: vec![],
 //!     selection: None,
 //! };
-//! let a = advise::advise(&summary, &advise::specs(&cases, &|_, _| None), &Options::default());
+//! let a = advise::advise(&summary, &advise::specs(&cases, &|_, _| Default::default()), &Options::default());
 //! assert!(a.cases.is_empty()); // nothing was run
 //! assert!(advise::render(&a).starts_with("Recommendation"));
 //! ```
 mod avoid;
 mod rank;
+pub mod reference;
 pub mod robust;
 #[cfg(test)]
 mod tests;
@@ -130,6 +133,9 @@ pub struct CaseSpec {
     pub unit: String,
     pub targets: Vec<f64>,
     pub max_energy_drift: f64,
+    /// A target is offered only at this many times every scene's claim or above
+    /// (`CLAIM_MARGIN`; a physical view's own, `figures::PhysicalView::claim_margin`).
+    pub claim_margin: f64,
     pub scenes: Vec<SceneSpec>,
 }
 
@@ -140,11 +146,59 @@ pub struct SceneSpec {
     pub control: bool,
     /// The reference's accuracy claim for the primary metric (None: no reference).
     pub claim: Option<f64>,
+    /// The variant that made the reference, when the reference is one of the variants
+    /// (`problem::ReferenceVariant`; `reference.rs`).
+    pub reference_variant: Option<crate::problem::ReferenceVariant>,
 }
 
-/// The specs of `cases`; `claim(case, scene)` gives a scene's accuracy claim for its
-/// primary metric.
-pub fn specs(cases: &[Case], claim: &dyn Fn(&Case, &str) -> Option<f64>) -> Vec<CaseSpec> {
+/// What the recommendation needs of a scene's stored reference.
+#[derive(Debug, Clone, Default)]
+pub struct SceneReference {
+    /// Its accuracy claim for the metric ranked (None: no reference could be attached).
+    pub claim: Option<f64>,
+    /// The variant that made it, if it is one (`Problem::reference_variant`).
+    pub variant: Option<crate::problem::ReferenceVariant>,
+}
+
+/// Which claim of a reference the advice floors its targets on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Claim {
+    /// `Problem::accuracy_claim`: the floor of a step-convergence error.
+    Accuracy,
+    /// `Problem::physical_claim`: the reference's own error in a ranking of models.
+    Physical,
+}
+
+/// What the stored reference of `case`'s `scene` under `root` tells the advice for `metric`:
+/// the scene is compiled and its reference attached (a scene whose reference cannot be
+/// attached has no claim: every target is offered there, and no variant is named).
+pub fn stored_reference(
+    root: &std::path::Path,
+    case: &Case,
+    scene: &str,
+    metric: &str,
+    claim: Claim,
+) -> SceneReference {
+    let attached = case.scene(scene).and_then(|s| {
+        let mut p = (crate::problem::family_of(case).compile)(case, s).ok()?;
+        p.attach_reference(root).ok()?;
+        Some(p)
+    });
+    match attached {
+        Some(p) => SceneReference {
+            claim: match claim {
+                Claim::Accuracy => p.accuracy_claim(metric),
+                Claim::Physical => p.physical_claim(metric),
+            },
+            variant: p.reference_variant(),
+        },
+        None => SceneReference::default(),
+    }
+}
+
+/// The specs of `cases`; `reference(case, scene)` gives what the advice needs of a scene's
+/// reference for its primary metric.
+pub fn specs(cases: &[Case], reference: &dyn Fn(&Case, &str) -> SceneReference) -> Vec<CaseSpec> {
     cases
         .iter()
         .map(|c| {
@@ -163,13 +217,18 @@ pub fn specs(cases: &[Case], claim: &dyn Fn(&Case, &str) -> Option<f64>) -> Vec<
                     .clone()
                     .unwrap_or_else(|| DEFAULT_TARGETS.to_vec()),
                 max_energy_drift: c.advise_max_energy_drift,
+                claim_margin: CLAIM_MARGIN,
                 scenes: c
                     .scenes
                     .iter()
-                    .map(|s| SceneSpec {
-                        name: s.name.clone(),
-                        control: s.control,
-                        claim: claim(c, &s.name),
+                    .map(|s| {
+                        let r = reference(c, &s.name);
+                        SceneSpec {
+                            name: s.name.clone(),
+                            control: s.control,
+                            claim: r.claim,
+                            reference_variant: r.variant,
+                        }
                     })
                     .collect(),
             }
@@ -201,6 +260,10 @@ pub struct CaseAdvice {
     /// At what step: the stability study's largest stable and accurate steps per variant
     /// (`robust.rs`; empty without `stability.json`).
     pub robustness: Vec<robust::Robust>,
+    /// The scenes whose reference is itself one of the variants, each with its sentence
+    /// (`reference.rs`); absent from the JSON when empty.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub references: Vec<reference::ReferenceNote>,
 }
 
 /// The cheapest variants at one target.
@@ -324,6 +387,7 @@ pub fn advise(summary: &Summary, specs: &[CaseSpec], opts: &Options) -> Advice {
                     .as_ref()
                     .map(|st| robust::robustness(&spec.case, st))
                     .unwrap_or_default(),
+                references: reference::notes(&scenes, &records, &spec.metric),
             })
         })
         .collect();

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 
 use super::TargetAdvice;
-use super::{By, CLAIM_MARGIN, CaseSpec, MIN_TIMED_S, Pick, SceneSpec, Setting, Skipped, TIE_REL};
+use super::{By, CaseSpec, MIN_TIMED_S, Pick, SceneSpec, Setting, Skipped, TIE_REL};
 use crate::summary::{Record, Status};
 
 /// A variant's runs grouped by scene, keyed by the family's variant order.
@@ -40,13 +40,13 @@ pub(super) fn targets(
     let mut offered = vec![];
     let mut skipped = vec![];
     for &target in wanted {
-        if target < CLAIM_MARGIN * floor {
+        if target < spec.claim_margin * floor {
             skipped.push(Skipped {
                 target,
                 reason: format!(
-                    "below {CLAIM_MARGIN}x the references' accuracy claim ({floor:.1e} {}): \
+                    "below {}x the references' accuracy claim ({floor:.1e} {}): \
                      errors there measure the reference",
-                    spec.unit
+                    spec.claim_margin, spec.unit
                 ),
             });
             continue;

@@ -65,6 +65,7 @@ fn spec(claim: f64) -> CaseSpec {
         name: name.into(),
         control,
         claim: Some(claim),
+        reference_variant: None,
     };
     CaseSpec {
         case: "c".into(),
@@ -72,6 +73,7 @@ fn spec(claim: f64) -> CaseSpec {
         unit: "rad".into(),
         targets: vec![1e-3, 1e-6, 1e-9],
         max_energy_drift: 1e-3,
+        claim_margin: super::CLAIM_MARGIN,
         scenes: vec![scene("a", false), scene("b", false), scene("ctl", true)],
     }
 }

@@ -1,7 +1,8 @@
 //! The recommendation as text, for the terminal (`mbdbench advise`, the end of the main job):
 //! per case one line per target (winner, its settings and cost, the runner-up and the gap, or
 //! "tie" and every variant within `TIE_REL` of the winner's cost, the wall-time winner or why
-//! there is none), the skipped targets, the robustness ranking
+//! there is none), after the scenes whose reference is itself one of the variants say so
+//! (`reference.rs`), the skipped targets, the robustness ranking
 //! (at most `ROBUST_LINES` lines), and the avoid list
 //! grouped by reason (at most `AVOID_LINES` lines per case, with the count of the rest).
 use std::fmt::Write;
@@ -75,6 +76,9 @@ pub fn render(a: &Advice) -> String {
                 format!("; controls left out: {}", c.controls.join(", "))
             }
         );
+        for n in &c.references {
+            let _ = writeln!(out, "  reference = a variant: {}", n.text);
+        }
         for t in &c.targets {
             match &t.winner {
                 Some(w) => {

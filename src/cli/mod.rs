@@ -550,7 +550,8 @@ fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
 }
 
 /// The recommendation of `summary`, the references' accuracy claims deciding which targets
-/// are offered (a scene whose reference cannot be loaded offers every target).
+/// are offered (a scene whose reference cannot be loaded offers every target), and the
+/// references that are themselves variants named.
 fn advice_for(
     common: &Common,
     cases: &[Case],
@@ -558,13 +559,16 @@ fn advice_for(
     opts: &crate::advise::Options,
 ) -> crate::advise::Advice {
     let root = common.references.clone().unwrap_or_else(default_references);
-    let claim = |c: &Case, scene: &str| -> Option<f64> {
-        let s = c.scene(scene)?;
-        let mut p = (crate::problem::family_of(c).compile)(c, s).ok()?;
-        p.attach_reference(&root).ok()?;
-        p.accuracy_claim(&c.primary_metric)
+    let reference = |c: &Case, scene: &str| {
+        crate::advise::stored_reference(
+            &root,
+            c,
+            scene,
+            &c.primary_metric,
+            crate::advise::Claim::Accuracy,
+        )
     };
-    crate::advise::advise(summary, &crate::advise::specs(cases, &claim), opts)
+    crate::advise::advise(summary, &crate::advise::specs(cases, &reference), opts)
 }
 
 /// The recommendation on the physical metric of the cases whose family declares one
@@ -576,14 +580,17 @@ fn physical_advice_for(
     summary: &crate::summary::Summary,
 ) -> crate::advise::Advice {
     let root = common.references.clone().unwrap_or_else(default_references);
-    let claim = |c: &Case, scene: &str| -> Option<f64> {
-        let metric = crate::problem::family_of(c).figures.physical?.metric;
-        let s = c.scene(scene)?;
-        let mut p = (crate::problem::family_of(c).compile)(c, s).ok()?;
-        p.attach_reference(&root).ok()?;
-        p.accuracy_claim(metric)
+    let reference = |c: &Case, scene: &str| match crate::problem::family_of(c).figures.physical {
+        Some(view) => crate::advise::stored_reference(
+            &root,
+            c,
+            scene,
+            view.metric,
+            crate::advise::Claim::Physical,
+        ),
+        None => crate::advise::SceneReference::default(),
     };
-    let specs = crate::report::advice::physical_specs(cases, &claim);
+    let specs = crate::report::advice::physical_specs(cases, &reference);
     crate::advise::advise(summary, &specs, &crate::advise::Options::default())
 }
 

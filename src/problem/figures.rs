@@ -240,4 +240,9 @@ pub struct PhysicalView {
     pub targets: &'static [f64],
     /// One sentence saying what the ranking measures, for the first screen.
     pub what: &'static str,
+    /// A target is offered where it is at least this many times every scene's reference
+    /// error for `metric` (`Problem::physical_claim`): a ranking of models asks whether a
+    /// target is met, decided to `1 / claim_margin` of it, not a step-convergence slope
+    /// (whose floor is `advise::CLAIM_MARGIN`, 100).
+    pub claim_margin: f64,
 }

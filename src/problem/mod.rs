@@ -39,9 +39,11 @@ use crate::summary::Series;
 
 pub mod figures;
 pub mod matrix;
+pub mod reference_variant;
 
 pub use crate::run::Stepping;
 pub use matrix::{Cell, Entry, matrix};
+pub use reference_variant::ReferenceVariant;
 
 /// The families, in report order. Adding a family is its folder under `src/model/` plus one
 /// line in `model::families!`.
@@ -352,6 +354,19 @@ pub trait Problem: Send + Sync {
     fn accuracy_claim_for(&self, metric: &str, formulation: &str) -> Option<f64> {
         let _ = formulation;
         self.accuracy_claim(metric)
+    }
+    /// The attached reference's own error for `metric` where it serves a ranking of models
+    /// (`figures::PhysicalView`): what separates it from the exact physics of its model, not
+    /// its distance to another model. The accuracy claim by default; a family whose claim
+    /// includes a cross-check against another formulation (which measures that
+    /// formulation's model error, the very thing the ranking ranks) gives the rest.
+    fn physical_claim(&self, metric: &str) -> Option<f64> {
+        self.accuracy_claim(metric)
+    }
+    /// The variant and step that made the attached reference, when the reference is itself
+    /// one of the variants (`reference_variant.rs`); None for a converged or exact reference.
+    fn reference_variant(&self) -> Option<ReferenceVariant> {
+        None
     }
     /// The period (s) of the scene's first (slowest) elastic mode: the time scale of the
     /// seam's step search (`stability::seam_search`), whose horizon is a number of these

@@ -25,10 +25,13 @@ pub const AVOID_GROUPS: usize = 3;
 pub const AVOID_NAMES: usize = 3;
 
 /// The specs of the cases whose family declares a physical view, with that view's metric,
-/// unit and targets in place of the primary metric's; `claim(case, scene)` is the reference's
-/// accuracy claim for that metric.
-pub fn physical_specs(cases: &[Case], claim: &dyn Fn(&Case, &str) -> Option<f64>) -> Vec<CaseSpec> {
-    let mut specs = crate::advise::specs(cases, claim);
+/// unit and targets in place of the primary metric's; `reference(case, scene)` is what the
+/// advice needs of the scene's reference for that metric.
+pub fn physical_specs(
+    cases: &[Case],
+    reference: &dyn Fn(&Case, &str) -> crate::advise::SceneReference,
+) -> Vec<CaseSpec> {
+    let mut specs = crate::advise::specs(cases, reference);
     specs.retain_mut(|spec| {
         let Some(case) = cases.iter().find(|c| c.name == spec.case) else {
             return false;
@@ -45,6 +48,7 @@ pub fn physical_specs(cases: &[Case], claim: &dyn Fn(&Case, &str) -> Option<f64>
             .map_or("", |m| m.unit)
             .to_string();
         spec.targets = view.targets.to_vec();
+        spec.claim_margin = view.claim_margin;
         true
     });
     specs
@@ -257,6 +261,12 @@ fn block(c: &CaseAdvice, physical: Option<(&CaseAdvice, &str)>) -> String {
         s.push_str(&format!("<p>{}{}</p>\n", esc(&c.metric), esc(&scenes)));
     }
     s.push_str(&ranking(c));
+    for n in &c.references {
+        s.push_str(&format!(
+            "<p class=\"refvar\"><b>Reference = a variant.</b> {}</p>\n",
+            esc(&n.text)
+        ));
+    }
     if !c.avoid.is_empty() {
         s.push_str(&format!(
             "<p class=\"avoid\"><b>Avoid</b> {}</p>\n",
@@ -420,6 +430,18 @@ pub fn markdown(a: &Advice) -> String {
         s.push('\n');
     }
     s.push('\n');
+    for c in &a.cases {
+        for n in &c.references {
+            s.push_str(&format!(
+                "> **{}**, reference = a variant: {}\n",
+                text(&c.case),
+                text(&n.text)
+            ));
+        }
+    }
+    if a.cases.iter().any(|c| !c.references.is_empty()) {
+        s.push('\n');
+    }
     s
 }
 
@@ -452,6 +474,7 @@ mod tests {
             skipped_targets: skipped,
             avoid: vec![],
             robustness: vec![],
+            references: vec![],
         }
     }
 

@@ -102,7 +102,7 @@ pub fn plot(cv: &CaseView, sv: &SceneView, sel: &Panel, footer: &str) -> Plot {
             cv.name, sv.name, cv.primary, sel.short
         ),
         x_label: super::data::t_labels(cv, &sv.name).1.into(),
-        y_label: super::data::with_unit(cv, &cv.primary),
+        y_label: super::data::error_label(cv, sv),
         x: super::axes::Scale::Log,
         y: super::axes::Scale::Log,
         lines,
@@ -114,9 +114,10 @@ pub fn plot(cv: &CaseView, sv: &SceneView, sel: &Panel, footer: &str) -> Plot {
              the reference's accuracy claim and 1e-2; n/a with fewer than 3 such points); \
              local: the range of the slopes between consecutive points of the fit. A fit whose \
              local slopes differ by more than {ASYMPTOTIC_SPREAD} is not asymptotic and gives \
-             no order.",
+             no order.{}",
             cv.primary,
-            sel.drawn(cv.family, false)
+            sel.drawn(cv.family, false),
+            super::data::reference_clause(sv)
         ),
         footer: footer.into(),
         round_off: None,

@@ -90,6 +90,28 @@ pub fn with_unit(cv: &CaseView, metric: &str) -> String {
     }
 }
 
+/// The label of a scene's error axis: the primary metric with its unit, and, where the
+/// reference is itself one of the variants, whose distance it is.
+pub fn error_label(cv: &CaseView, sv: &SceneView) -> String {
+    let base = with_unit(cv, &cv.primary);
+    match &sv.reference {
+        Some(r) => format!("{base}, distance to {r}"),
+        None => base,
+    }
+}
+
+/// A caption's sentence saying that a scene's errors are distances to a variant (empty where
+/// the reference is converged or exact).
+pub fn reference_clause(sv: &SceneView) -> String {
+    match &sv.reference {
+        Some(r) => format!(
+            " The reference is {r}, itself one of the variants: every error here is a distance \
+             to that scheme, not to the exact solution."
+        ),
+        None => String::new(),
+    }
+}
+
 /// How a metric gathers its run, from its name's suffix (the metric names' convention):
 /// ` (max over the run)` for `_max`, ` (RMS over the run)` for `_rms`, ` (at the end)` for
 /// `_final`, nothing otherwise.
@@ -205,6 +227,9 @@ pub struct SceneView<'a> {
     pub variants: Vec<VariantRuns<'a>>,
     /// `n/a` records (with their reasons).
     pub na: Vec<&'a Record>,
+    /// The reference's label when it is itself one of the variants
+    /// (`problem::ReferenceVariant::label`): the scene's errors are distances to it.
+    pub reference: Option<String>,
 }
 
 impl<'a> SceneView<'a> {
@@ -390,6 +415,7 @@ fn scene_view<'a>(
         name: scene.to_string(),
         variants,
         na,
+        reference: None,
     }
 }
 

@@ -81,17 +81,20 @@ pub fn legend(entries: &[Entry]) -> String {
             Entry::Heading(t) => s.push_str(&format!("<li class=\"lh\">{}</li>", esc(t))),
             Entry::Sample {
                 colour,
-                dashed,
+                pattern,
                 line,
                 marker,
                 text,
             } => {
                 let hex = super::style::hex(*colour);
-                // The colour once per row (`--c`): the sample's line and the marker take it.
-                let sample = match (line, dashed) {
-                    (false, _) => "<span class=\"ls none\"></span>",
-                    (true, true) => "<span class=\"ls dash\"></span>",
-                    (true, false) => "<span class=\"ls\"></span>",
+                // The colour once per row (`--c`): the sample's line and the marker take it;
+                // solid and dashed are CSS borders, a panel's own patterns CSS gradients
+                // (`css.rs`, `.ls.p2` to `.p7`, the dash arrays of `style::PATTERNS`).
+                let sample = match (line, pattern) {
+                    (false, _) => "<span class=\"ls none\"></span>".to_string(),
+                    (true, 0) => "<span class=\"ls\"></span>".to_string(),
+                    (true, 1) => "<span class=\"ls dash\"></span>".to_string(),
+                    (true, k) => format!("<span class=\"ls p{k}\"></span>"),
                 };
                 let glyph = marker.map(super::style::glyph).unwrap_or(' ');
                 s.push_str(&format!(
@@ -374,6 +377,12 @@ fn case_section(c: &CaseSection, env: &str, explained: &Explained) -> String {
             sc.work_precision.len() + sc.convergence.len() + sc.timeseries.len(),
             sc.variants
         ));
+        if let Some(n) = &sc.reference_note {
+            s.push_str(&format!(
+                "<p class=\"refvar\"><b>Reference = a variant.</b> {}</p>\n",
+                esc(n)
+            ));
+        }
         s.push_str(&figures(
             "work-precision",
             "work-precision",

@@ -99,6 +99,8 @@ pub struct SceneSection {
     pub heat: heatmap::HeatMap,
     /// Variants of the scene (not table rows: a gated run adds a row).
     pub variants: usize,
+    /// The advice's sentence when the scene's reference is itself one of the variants.
+    pub reference_note: Option<String>,
 }
 
 /// One case of the page.
@@ -264,8 +266,41 @@ pub fn build_page(
     gate_rows: Option<&[GateRow]>,
     stability: Option<stability::Source>,
 ) -> Page {
+    build_page_with(summary, series_root, cases, gate_rows, stability, None)
+}
+
+/// The scenes' reference labels from the advice's notes (`advise::reference`): the scenes
+/// whose reference is itself one of the variants.
+fn mark_references(views: &mut [data::CaseView], advice: &crate::advise::Advice) {
+    for cv in views {
+        let Some(ca) = advice.cases.iter().find(|c| c.case == cv.name) else {
+            continue;
+        };
+        for sv in &mut cv.scenes {
+            sv.reference = ca
+                .references
+                .iter()
+                .find(|n| n.scene == sv.name)
+                .map(|n| n.reference.label());
+        }
+    }
+}
+
+/// `build_page`, with the recommendation's notes naming the references that are variants
+/// beside the errors measured against them.
+fn build_page_with(
+    summary: &Summary,
+    series_root: &Path,
+    cases: &[Case],
+    gate_rows: Option<&[GateRow]>,
+    stability: Option<stability::Source>,
+    advice: Option<&crate::advise::Advice>,
+) -> Page {
     let foot = footer(summary);
     let mut views = data::case_views(summary, cases);
+    if let Some(a) = advice {
+        mark_references(&mut views, a);
+    }
     if let Some(src) = stability {
         for name in stability::case_names(src.summary) {
             if views.iter().any(|v| v.name == name) {
@@ -325,6 +360,10 @@ pub fn build_page(
                         matrix: tables::matrix(cv, sv, gate_rows),
                         heat: heatmap::heatmap(cv, sv, &columns, gate_rows),
                         variants: sv.variants.len(),
+                        reference_note: advice
+                            .and_then(|a| a.cases.iter().find(|c| c.case == cv.name))
+                            .and_then(|c| c.references.iter().find(|n| n.scene == sv.name))
+                            .map(|n| n.text.clone()),
                     }
                 })
                 .collect();
@@ -420,12 +459,13 @@ pub fn write_report(
     extras: Extras,
     out: &Path,
 ) -> Result<ReportFiles, ReportError> {
-    let mut page = build_page(
+    let mut page = build_page_with(
         summary,
         series_root,
         cases,
         extras.gate_rows,
         extras.stability,
+        extras.advice.as_ref(),
     );
     // "What this shows" uses the targets the recommendation offers (never one it refuses).
     if let Some(a) = &extras.advice {

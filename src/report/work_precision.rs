@@ -131,7 +131,7 @@ pub fn plot(
             sel.short
         ),
         x_label: cost.label().into(),
-        y_label: super::data::with_unit(cv, &cv.primary),
+        y_label: super::data::error_label(cv, sv),
         x: super::axes::Scale::Log,
         y: super::axes::Scale::Log,
         lines,
@@ -140,10 +140,11 @@ pub fn plot(
         caption: format!(
             "Work-precision: {}{} {what}, each line through the variant's \
              whole ladder (fixed steps coarse to fine, tolerances loose to tight). {} Lower \
-             left is better; marks in the red band are runs that failed, at the work they did.",
+             left is better; marks in the red band are runs that failed, at the work they did.{}",
             cv.primary,
             super::data::aggregate(&cv.primary),
-            sel.drawn(cv.family, false)
+            sel.drawn(cv.family, false),
+            super::data::reference_clause(sv)
         ),
         footer: footer.into(),
     }

@@ -30,6 +30,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use super::reference::{COLUMNS, Track};
+use crate::problem::ReferenceVariant;
 use crate::reference::sha256_hex;
 
 /// The schema of an OpenSees reference file.
@@ -222,6 +223,8 @@ pub struct External {
     pub path: PathBuf,
     pub regenerate: String,
     pub opensees: String,
+    /// The variant the record's scheme is (`scheme`), when it is one of ours.
+    pub variant: Option<ReferenceVariant>,
 }
 
 /// The caller's comparison of a record's `model` and `settings` with its case: `Err` names
@@ -442,7 +445,43 @@ pub fn load_external(
         peak,
         sha256: sha,
         path,
+        variant: scheme(&f.settings, &f.generator.opensees),
         regenerate: f.generator.regenerate,
         opensees: f.generator.opensees,
+    })
+}
+
+/// The variant a record's scheme is, read from its `settings` once the model check has
+/// passed (that check establishes the element is our `force_based` one and, for a cyclic
+/// record, that its increment is the case's): OpenSees' `Newmark` with `gamma = 1/2`,
+/// `beta = 1/4` at `dt` is our `newmark` (the trapezoidal rule) at `dt`; its
+/// `DisplacementControl` at the protocol's increment is our `newton_disp` at one increment
+/// with plain `Newton`, `newton_disp_ls` with `NewtonLineSearch`, `newton_disp_krylov` with
+/// `KrylovNewton` (the algorithm decides only how the increment's equilibrium is found).
+/// Anything else (another integrator or algorithm) is no variant of ours: None.
+fn scheme(settings: &Value, opensees: &str) -> Option<ReferenceVariant> {
+    let text = |k: &str| settings.get(k).and_then(Value::as_str);
+    let num = |k: &str| settings.get(k).and_then(Value::as_f64);
+    let (integrator, step, step_unit) = match text("integrator")? {
+        "Newmark" if num("gamma") == Some(0.5) && num("beta") == Some(0.25) => {
+            ("newmark", num("dt").filter(|h| h.is_finite() && *h > 0.0)?, "s")
+        }
+        "DisplacementControl" => {
+            let ours = match text("algorithm")? {
+                "Newton" => "newton_disp",
+                "NewtonLineSearch" => "newton_disp_ls",
+                "KrylovNewton" => "newton_disp_krylov",
+                _ => return None,
+            };
+            (ours, 1.0, "protocol increment")
+        }
+        _ => return None,
+    };
+    Some(ReferenceVariant {
+        integrator: integrator.into(),
+        formulation: "force_based".into(),
+        step,
+        step_unit: step_unit.into(),
+        made_by: format!("OpenSees {opensees}"),
     })
 }

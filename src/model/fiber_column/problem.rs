@@ -304,6 +304,12 @@ impl Problem for FiberProblem {
             _ => None,
         }
     }
+    fn reference_variant(&self) -> Option<crate::problem::ReferenceVariant> {
+        match self.reference.as_ref()? {
+            Attached::External(x) => x.variant.clone(),
+            Attached::Exact(..) => None,
+        }
+    }
     fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String> {
         let Stepping::Dt(dt) = stepping else {
             return Err("the fiber column's methods take a fixed step".into());
