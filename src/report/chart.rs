@@ -17,7 +17,8 @@
 //! backend has no `stroke-dasharray` and its dashed series writes one element per dash (a
 //! noisy round-off drift line became 12 000 elements, 1.2 MB), whereas one `<polyline>` per
 //! line with a dash array stays small. Each line is drawn in its integrator's colour with its
-//! parameterization's marker, dashed for the spatial formulation (`style`). Runs that failed
+//! parameterization's marker, dashed for the second formulation, and with a pattern of its
+//! own where a panel would otherwise hold two lines of one colour and pattern (`style`). Runs that failed
 //! have no value: their markers sit in a shaded "failed" band above the data, at their x
 //! (the x range follows the lines; a mark outside it, or one that cannot be shown such as 0
 //! RHS evaluations on a log axis, is pinned to the nearest edge), stacked when they coincide.
@@ -289,9 +290,10 @@ fn font(px: f64) -> FontDesc<'static> {
     ("sans-serif", px * 1.24).into_font()
 }
 
-/// An SVG polyline through pixel points: solid, or dashed with `stroke-dasharray` (one
-/// element however long the line; plotters' dashed series writes one element per dash).
-fn polyline_svg(pts: &[(i32, i32)], colour: RGBColor, width: u32, dashed: bool) -> String {
+/// An SVG polyline through pixel points: solid, or patterned with `stroke-dasharray`
+/// (`style::PATTERNS[pattern]`; one element however long the line; plotters' dashed series
+/// writes one element per dash).
+fn polyline_svg(pts: &[(i32, i32)], colour: RGBColor, width: u32, pattern: usize) -> String {
     let coords: Vec<String> = super::svg_compact::simplify_polyline(pts)
         .iter()
         .map(|(a, b)| format!("{a},{b}"))
@@ -300,10 +302,9 @@ fn polyline_svg(pts: &[(i32, i32)], colour: RGBColor, width: u32, dashed: bool) 
         "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"{width}\" \
          stroke-linejoin=\"round\"{} points=\"{}\"/>\n",
         style::hex(colour),
-        if dashed {
-            " stroke-dasharray=\"6 4\""
-        } else {
-            ""
+        match style::PATTERNS.get(pattern).copied().flatten() {
+            Some(d) => format!(" stroke-dasharray=\"{d}\""),
+            None => String::new(),
         },
         coords.join(" ")
     )
@@ -468,7 +469,8 @@ fn draw_chart(
         2
     };
     let mut markers = String::new();
-    for l in &p.lines {
+    let patterns = line_patterns(p);
+    for (l, &pattern) in p.lines.iter().zip(&patterns.lines) {
         let pts: Vec<(i32, i32)> = l
             .points
             .iter()
@@ -485,12 +487,7 @@ fn draw_chart(
             super::html::esc(&l.key.label())
         ));
         if pts.len() > 1 && !category {
-            overlay.push_str(&polyline_svg(
-                &pts,
-                c,
-                width,
-                style::dashed(&l.key.formulation),
-            ));
+            overlay.push_str(&polyline_svg(&pts, c, width, pattern));
         }
         overlay.push_str("</g>\n");
         let m = style::marker(&l.key.param);
@@ -527,10 +524,10 @@ fn draw_chart(
 #[derive(Debug, Clone, PartialEq)]
 pub enum Entry {
     Heading(String),
-    /// A line sample (colour, dashed, marker) and its text.
+    /// A line sample (colour, pattern: an index into `style::PATTERNS`, marker) and its text.
     Sample {
         colour: RGBColor,
-        dashed: bool,
+        pattern: usize,
         /// Draw the line sample (not only the marker).
         line: bool,
         marker: Option<Marker>,
@@ -538,8 +535,20 @@ pub enum Entry {
     },
 }
 
+/// The line patterns of `p` (`style::patterns`).
+fn line_patterns(p: &Plot) -> style::Patterns {
+    style::patterns(p.lines.iter().map(|l| {
+        (
+            l.key.integrator.as_str(),
+            l.key.param.as_str(),
+            l.key.formulation.as_str(),
+        )
+    }))
+}
+
 fn legend_entries(p: &Plot) -> Vec<Entry> {
     let mut out = vec![];
+    let patterns = line_patterns(p);
     let keys: Vec<&VariantKey> = p
         .lines
         .iter()
@@ -548,10 +557,10 @@ fn legend_entries(p: &Plot) -> Vec<Entry> {
         .collect();
     match p.legend {
         Legend::PerLine => {
-            for l in &p.lines {
+            for (l, &pattern) in p.lines.iter().zip(&patterns.lines) {
                 out.push(Entry::Sample {
                     colour: style::colour(&l.key.integrator),
-                    dashed: style::dashed(&l.key.formulation),
+                    pattern,
                     line: true,
                     marker: Some(style::marker(&l.key.param)),
                     text: l.label.clone().unwrap_or_else(|| l.key.label()),
@@ -582,40 +591,64 @@ fn legend_entries(p: &Plot) -> Vec<Entry> {
             for i in integrators {
                 out.push(Entry::Sample {
                     colour: style::colour(i),
-                    dashed: false,
+                    pattern: 0,
                     line: true,
                     marker: None,
                     text: i.into(),
                 });
             }
-            out.push(Entry::Heading("parameterization (marker)".into()));
-            for q in params {
-                out.push(Entry::Sample {
-                    colour: INK,
-                    dashed: false,
-                    line: false,
-                    marker: Some(style::marker(q)),
-                    text: q.into(),
-                });
-            }
             // Dots on a category axis have no line: a chart's formulations sit side by side.
             let category = matches!(p.x, super::axes::Scale::Category(_));
-            out.push(Entry::Heading(
-                if category {
-                    "formulation (left to right)"
-                } else {
-                    "formulation (line)"
+            // With the panel's own patterns, the parameterization/formulation rows below
+            // carry the markers of the lines; only a failure mark's chart without a line is
+            // listed here then.
+            let own = !patterns.pairs.is_empty() && !category;
+            params.retain(|q| !own || !patterns.pairs.iter().any(|p| p.0 == *q));
+            if !params.is_empty() {
+                out.push(Entry::Heading("parameterization (marker)".into()));
+                for q in params {
+                    out.push(Entry::Sample {
+                        colour: INK,
+                        pattern: 0,
+                        line: false,
+                        marker: Some(style::marker(q)),
+                        text: q.into(),
+                    });
                 }
-                .into(),
-            ));
-            for f in forms {
-                out.push(Entry::Sample {
-                    colour: INK,
-                    dashed: style::dashed(f),
-                    line: !category,
-                    marker: None,
-                    text: f.into(),
-                });
+            }
+            if !own {
+                out.push(Entry::Heading(
+                    if category {
+                        "formulation (left to right)"
+                    } else {
+                        "formulation (line)"
+                    }
+                    .into(),
+                ));
+                for f in forms {
+                    out.push(Entry::Sample {
+                        colour: INK,
+                        pattern: usize::from(style::dashed(f)),
+                        line: !category,
+                        marker: None,
+                        text: f.into(),
+                    });
+                }
+            } else {
+                // One integrator on several charts: the line pattern is the chart and
+                // formulation's in this panel (`style::patterns`).
+                out.push(Entry::Heading(
+                    "parameterization/formulation (marker, line)".into(),
+                ));
+                for (param, formulation, pattern) in &patterns.pairs {
+                    out.push(Entry::Sample {
+                        colour: INK,
+                        pattern: *pattern,
+                        line: true,
+                        marker: Some(style::marker(param)),
+                        text: format!("{param}/{formulation}"),
+                    });
+                }
             }
         }
     }
@@ -655,7 +688,7 @@ fn draw_legend(
             }
             Entry::Sample {
                 colour,
-                dashed,
+                pattern,
                 line,
                 marker,
                 text,
@@ -666,7 +699,7 @@ fn draw_legend(
                         &[(x0 + 12, mid), (x0 + 42, mid)],
                         *colour,
                         2,
-                        *dashed,
+                        *pattern,
                     ));
                 }
                 if let Some(m) = marker {

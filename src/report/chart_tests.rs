@@ -156,3 +156,48 @@ fn no_data() {
     );
     assert!(matches!(render(&p).unwrap(), Rendered::NoData(_)));
 }
+
+/// Two lines of one integrator and formulation on two charts get different line patterns
+/// (no two lines of a panel share colour and pattern), and the legend names each chart and
+/// formulation with its pattern in place of the formulation rows.
+#[test]
+fn one_integrator_on_two_charts_has_two_patterns() {
+    let line = |p: &str| Line {
+        key: key(p, "rk4", "body"),
+        points: vec![(1e-3, 2e-8), (1e-1, 3e-4)],
+        label: None,
+        marker_every: 1,
+    };
+    let p = plot(vec![line("quat"), line("so3")], vec![]);
+    let Rendered::Svg(d) = render(&p).unwrap() else {
+        panic!("no svg")
+    };
+    // The inline chart writes each series as a group holding its line (a path there).
+    let dashes: Vec<&str> = d
+        .inline
+        .split("<g class=\"series\"")
+        .skip(1)
+        .map(|s| {
+            let group = s.split("</g>").next().unwrap();
+            group
+                .split("stroke-dasharray=\"")
+                .nth(1)
+                .map_or("solid", |r| r.split('"').next().unwrap())
+        })
+        .collect();
+    assert_eq!(dashes.len(), 2, "{dashes:?}");
+    assert_ne!(dashes[0], dashes[1]);
+    let texts: Vec<String> = legend_entries(&p)
+        .iter()
+        .map(|e| match e {
+            Entry::Heading(t) => t.clone(),
+            Entry::Sample { text, pattern, .. } => format!("{text}:{pattern}"),
+        })
+        .collect();
+    assert!(texts.contains(&"quat/body:0".to_string()), "{texts:?}");
+    assert!(texts.contains(&"so3/body:1".to_string()), "{texts:?}");
+    assert!(
+        !texts.iter().any(|t| t.starts_with("formulation")),
+        "{texts:?}"
+    );
+}

@@ -26,7 +26,7 @@ ul.legend li{white-space:nowrap;display:flex;align-items:center;gap:4px}
 ul.legend li.lh{font-weight:600;color:#444;margin-top:4px}
 .ls{display:inline-block;width:26px;border-top:2px solid var(--c);height:0}
 .lm{color:var(--c)}
-.ls.dash{border-top-style:dashed}.ls.none{border-top-color:transparent}
+.ls.p2{border-top:0;height:2px;background:repeating-linear-gradient(90deg,var(--c) 0 2px,transparent 2px 5px)}.ls.p3{border-top:0;height:2px;background:repeating-linear-gradient(90deg,var(--c) 0 9px,transparent 9px 12px,var(--c) 12px 14px,transparent 14px 17px)}.ls.p4{border-top:0;height:2px;background:repeating-linear-gradient(90deg,var(--c) 0 14px,transparent 14px 18px)}.ls.p5{border-top:0;height:2px;background:repeating-linear-gradient(90deg,var(--c) 0 9px,transparent 9px 12px,var(--c) 12px 14px,transparent 14px 17px,var(--c) 17px 19px,transparent 19px 22px)}.ls.p6{border-top:0;height:2px;background:repeating-linear-gradient(90deg,var(--c) 0 2px,transparent 2px 9px)}.ls.p7{border-top:0;height:2px;background:repeating-linear-gradient(90deg,var(--c) 0 4px,transparent 4px 6px)}.ls.dash{border-top-style:dashed}.ls.none{border-top-color:transparent}
 .lm{display:inline-block;width:12px;text-align:center;font-size:12px;line-height:12px}
 figcaption{font-size:13px;color:#444;max-width:900px}
 .ptitle{font-size:14px;font-weight:600;color:#3c3c3c;max-width:560px;margin:0 0 2px}
@@ -63,7 +63,7 @@ section.advice{max-width:1880px}
  overflow-wrap:anywhere;min-width:0}
 .rec h3{margin:2px 0;font-size:15px}.rec ul{margin:2px 0;padding-left:16px}
 .rec li{margin:1px 0}.rec li.none{color:#666}.rec p{margin:2px 0}
-.rec .avoid{color:#7a2b00}
+.rec .avoid{color:#7a2b00}.refvar{color:#30415d;font-size:12.5px}
 .heat .tablewrap{max-height:560px;overflow:auto;border:1px solid #ddd}
 .heat table{margin:0}
 table.advice{margin:4px 0}table.advice td,table.advice th{padding:1px 6px}

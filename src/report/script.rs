@@ -7,8 +7,8 @@
 //! table's bounding box in page pixels (`advice top= bottom= left= right=`, or `advice none`),
 //! each case's recommendation block (`rec <case> top= bottom= height=`), the page's size
 //! (`page height= width= viewport=WxH svgs=`, the document's scroll height and width) and per
-//! inline plot its declared line count and its drawn series (`panel <case> <plot>
-//! lines=N series=M`).
+//! inline plot its declared line count, its drawn series and how many of its lines repeat
+//! an earlier line's colour and pattern (`panel <case> <plot> lines=N series=M same=K`).
 //!
 //! Invariants: the page reads the same without it (the tables are in registry order, every
 //! number is in the HTML); it never writes outside the heat-map bodies and the self-test
@@ -89,10 +89,19 @@ pub const SCRIPT: &str = r#"
   for (var s = 0; s < svgs.length; s++) {
     var fig = svgs[s].closest('figure');
     var sec = svgs[s].closest('section');
+    var seen = {};
+    var same = 0;
+    var polys = svgs[s].querySelectorAll('g.series polyline, g.series path');
+    for (var k = 0; k !== polys.length; k++) {
+      var look = polys[k].getAttribute('stroke') + ' ' +
+        (polys[k].getAttribute('stroke-dasharray') || 'solid');
+      if (seen[look]) { same++; }
+      seen[look] = true;
+    }
     out.push('panel ' + (sec ? sec.getAttribute('data-case') : '-') + ' ' +
       (fig ? fig.getAttribute('data-plot') : '-') + ' lines=' +
       svgs[s].getAttribute('data-lines') + ' series=' +
-      svgs[s].querySelectorAll('g.series').length);
+      svgs[s].querySelectorAll('g.series').length + ' same=' + same);
   }
   var pre = document.createElement('pre');
   pre.id = 'selftest';

@@ -1,6 +1,9 @@
 //! The report's visual encoding, fixed across every plot so a variant looks the same
 //! everywhere: colour = integrator, marker = parameterization, line pattern = formulation
 //! (the family's first formulation solid, its second dashed), all by the families' axis order.
+//! One exception keeps two lines of a panel from sharing colour and pattern: in a panel where
+//! one integrator and formulation are drawn on several charts, the pattern is that of the
+//! line's chart and formulation within the panel (`patterns`), listed in its legend.
 //!
 //! The markers are grouped by family so a reader can tell the chart type at a glance:
 //! triangles for the three Euler-angle charts, diamonds for the rotation vector (hollow) and
@@ -147,6 +150,69 @@ pub fn dashed(formulation: &str) -> bool {
         .is_some_and(|i| i % 2 == 1)
 }
 
+/// The line patterns, as SVG `stroke-dasharray` values (None: solid): 0 and 1 are the
+/// formulations' (`dashed`), the rest tell apart lines of one panel that would otherwise share
+/// colour and pattern (`patterns`).
+pub const PATTERNS: [Option<&str>; 8] = [
+    None,
+    Some("6 4"),
+    Some("2 3"),
+    Some("9 3 2 3"),
+    Some("14 4"),
+    Some("9 3 2 3 2 3"),
+    Some("2 7"),
+    Some("4 2"),
+];
+
+/// The line patterns of one panel (`patterns`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Patterns {
+    /// Per line, an index into [`PATTERNS`].
+    pub lines: Vec<usize>,
+    /// Empty where the patterns are the formulations' (`dashed`); else the panel's
+    /// `(param, formulation)` pairs in first-seen order, each with its own pattern.
+    pub pairs: Vec<(String, String, usize)>,
+}
+
+/// The pattern of each line of one panel, given per line `(integrator, param,
+/// formulation)`: its formulation's (`dashed`: 1, else 0), unless two lines of one colour
+/// (integrator) would then share a pattern (one integrator and formulation on several
+/// charts, told apart only by their markers); then every line's pattern is that of its
+/// `(param, formulation)` pair, the k-th pair of the panel taking pattern k, so lines of one
+/// colour always differ in pattern (a panel draws at most 8 lines, `select`; past
+/// `PATTERNS.len()` pairs the last pattern repeats).
+pub fn patterns<'a>(keys: impl IntoIterator<Item = (&'a str, &'a str, &'a str)>) -> Patterns {
+    let keys: Vec<(&str, &str, &str)> = keys.into_iter().collect();
+    let base: Vec<usize> = keys.iter().map(|k| usize::from(dashed(k.2))).collect();
+    let clash = keys.iter().enumerate().any(|(i, a)| {
+        keys[i + 1..]
+            .iter()
+            .zip(&base[i + 1..])
+            .any(|(b, &pb)| a.0 == b.0 && base[i] == pb)
+    });
+    if !clash {
+        return Patterns {
+            lines: base,
+            pairs: vec![],
+        };
+    }
+    let mut pairs: Vec<(String, String, usize)> = vec![];
+    let lines = keys
+        .iter()
+        .map(|&(_, param, formulation)| {
+            match pairs.iter().find(|p| p.0 == param && p.1 == formulation) {
+                Some(p) => p.2,
+                None => {
+                    let k = pairs.len().min(PATTERNS.len() - 1);
+                    pairs.push((param.to_string(), formulation.to_string(), k));
+                    k
+                }
+            }
+        })
+        .collect();
+    Patterns { lines, pairs }
+}
+
 /// `#rrggbb`.
 pub fn hex(c: RGBColor) -> String {
     format!("#{:02x}{:02x}{:02x}", c.0, c.1, c.2)
@@ -234,6 +300,43 @@ mod tests {
         }
     }
 
+    /// No two lines of a panel share colour and pattern while it has at most
+    /// `PATTERNS.len()` lines, whatever their integrators, charts and formulations.
+    #[test]
+    fn panel_lines_differ_in_colour_or_pattern() {
+        let ints = ["rk4", "gauss6"];
+        let params = ["quat", "so3", "rotvec", "matrix"];
+        let forms = ["body", "spatial"];
+        // Panels of up to 8 distinct variants drawn from 2 x 4 x 2 (every 7th subset).
+        let mut all: Vec<(&str, &str, &str)> = vec![];
+        for i in ints {
+            for p in params {
+                for f in forms {
+                    all.push((i, p, f));
+                }
+            }
+        }
+        for mask in 1u32..(1 << all.len()) {
+            if mask.count_ones() > 8 || mask % 7 != 0 {
+                continue;
+            }
+            let keys: Vec<_> = (0..all.len())
+                .filter(|b| mask >> b & 1 == 1)
+                .map(|b| all[b])
+                .collect();
+            let p = patterns(keys.iter().copied());
+            for (i, a) in keys.iter().enumerate() {
+                for (j, b) in keys.iter().enumerate().skip(i + 1) {
+                    assert!(
+                        a.0 != b.0 || p.lines[i] != p.lines[j],
+                        "{keys:?} -> {:?}",
+                        p.lines
+                    );
+                }
+            }
+        }
+    }
+
     /// Every registered integrator has its own colour and every parameterization its own marker.
     #[test]
     fn distinct_encodings() {
@@ -258,6 +361,19 @@ mod tests {
             }
         }
         assert!(dashed("spatial") && !dashed("body"));
+        let p = patterns([
+            ("rk4", "quat", "body"),
+            ("rk4", "quat", "spatial"),
+            ("gauss6", "quat", "body"),
+        ]);
+        assert_eq!((p.lines, p.pairs.len()), (vec![0, 1, 0], 0));
+        let p = patterns([
+            ("rk4", "quat", "body"),
+            ("rk4", "so3", "body"),
+            ("gauss6", "quat", "body"),
+        ]);
+        assert_eq!(p.lines, vec![0, 1, 0]);
+        assert_eq!(p.pairs.len(), 2);
         assert_eq!(colour("not_a_method"), colour("not_a_method"));
     }
 }
