@@ -1,5 +1,5 @@
 //! The two hashes that bind results to the inputs they were made from (cases/README.md,
-//! "Physics hash and settings hash").
+//! "Physics hash").
 //!
 //! - `inputs_sha256` (of a scene, stamped on its stored reference and on every record): the hex
 //!   SHA-256 of the canonical JSON (object keys sorted at every level, shortest round-trip

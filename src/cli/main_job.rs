@@ -5,7 +5,7 @@
 //! and the gate's verdict: the failing rows, the skipped ones by reason and
 //! `N passed, N failed, N skipped`, exactly what `mbdbench gate --require-stability` says on
 //! the same files and what the page's "Gates" line says. Exit 0 when every gate passes, 1
-//! when any fails. About 3 minutes on 2 cores (README, "Commands").
+//! when any fails. Its time on 2 cores: README.md, at the top.
 use super::*;
 
 pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> {
@@ -104,14 +104,15 @@ fn opening(common: &Common, out: &std::path::Path, full_stability: bool) -> Resu
             s.created_utc
         ),
         None => crate::say!(
-            "  No full run in {} yet to time it by (README, \"Commands\", gives one \
-             measured on 2 cores).",
+            "  No full run in {} yet to time it by (README.md gives one measured on 2 \
+             cores at the top).",
             out.display()
         ),
     }
     crate::say!(
         "  Ctrl-C at any moment leaves {} as it was: nothing half-written, nothing mixed.\n  \
-         A first look, the quick tier's short ladders: `mbdbench run --quick`; `mbdbench --help` \
+         A first look, the quick tier's short ladders: `mbdbench run --quick --out reports/quick` \
+         (in reports/latest, a quick run sends the next main job beside it); `mbdbench --help` \
          lists the commands.\n",
         out.display()
     );

@@ -323,7 +323,7 @@ pub trait Problem: Send + Sync {
     fn case(&self) -> &str;
     fn scene(&self) -> &str;
     /// The SHA-256 of the scene's physics and its reference's numerical settings
-    /// (cases/README.md, "Physics hash and settings hash").
+    /// (cases/README.md, "Physics hash").
     fn inputs_sha256(&self) -> &str;
     /// The SHA-256 of every other case-file key that can change a result (`case::hash`):
     /// the scene's `Scene::settings_sha256`, stamped on every record.

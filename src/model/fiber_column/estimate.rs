@@ -1,4 +1,4 @@
-//! The fiber column's memory and work estimate (`problem::Family::estimate`; README,
+//! The fiber column's memory and work estimate (`problem::Family::estimate`; cases/README.md,
 //! "Budgets"), from the loaded case's numbers before any fiber or matrix exists: for each
 //! formulation's mesh (`force_based` with `numerics.elements`, `force_based_fine` with
 //! `fine_elements`, the displacement-based meshes of 1 to 8 elements), its dense tangent

@@ -1,4 +1,4 @@
-//! The flexible beam's memory and work estimate (`problem::Family::estimate`; README,
+//! The flexible beam's memory and work estimate (`problem::Family::estimate`; cases/README.md,
 //! "Budgets"), from the loaded case's numbers. The costly model is `fe_exact`: `3 n + 1`
 //! unknowns for `n` elements (the hub angle of a free hub), whose structural integrators
 //! hold three dense `n x n` matrices (the tangent and two LU buffers, `structural/state.rs`)
