@@ -136,6 +136,8 @@ pub struct CaseSpec {
     /// A target is offered only at this many times every scene's claim or above
     /// (`CLAIM_MARGIN`; a physical view's own, `figures::PhysicalView::claim_margin`).
     pub claim_margin: f64,
+    /// What the claim is, for the reason of a target not offered (`accuracy claim`).
+    pub claim_name: &'static str,
     pub scenes: Vec<SceneSpec>,
 }
 
@@ -218,6 +220,7 @@ pub fn specs(cases: &[Case], reference: &dyn Fn(&Case, &str) -> SceneReference) 
                     .unwrap_or_else(|| DEFAULT_TARGETS.to_vec()),
                 max_energy_drift: c.advise_max_energy_drift,
                 claim_margin: CLAIM_MARGIN,
+                claim_name: "accuracy claim",
                 scenes: c
                     .scenes
                     .iter()

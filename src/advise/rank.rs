@@ -44,9 +44,9 @@ pub(super) fn targets(
             skipped.push(Skipped {
                 target,
                 reason: format!(
-                    "below {}x the references' accuracy claim ({floor:.1e} {}): \
+                    "below {}x the references' {} ({floor:.1e} {}): \
                      errors there measure the reference",
-                    spec.claim_margin, spec.unit
+                    spec.claim_margin, spec.claim_name, spec.unit
                 ),
             });
             continue;

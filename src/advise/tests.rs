@@ -74,6 +74,7 @@ fn spec(claim: f64) -> CaseSpec {
         targets: vec![1e-3, 1e-6, 1e-9],
         max_energy_drift: 1e-3,
         claim_margin: super::CLAIM_MARGIN,
+        claim_name: "accuracy claim",
         scenes: vec![scene("a", false), scene("b", false), scene("ctl", true)],
     }
 }

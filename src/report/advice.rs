@@ -49,6 +49,7 @@ pub fn physical_specs(
             .to_string();
         spec.targets = view.targets.to_vec();
         spec.claim_margin = view.claim_margin;
+        spec.claim_name = "own error";
         true
     });
     specs
