@@ -119,8 +119,8 @@ const FIGURES: Figures = Figures {
     physical: Some(PhysicalView {
         metric: "tip_deflection_error_max",
         targets: &[1e-2, 3e-3, 1e-3],
-        what: "distance of the tip deflection to the physical reference (fe_exact on the \
-               reference mesh at the reference step): which formulation models the beam",
+        what: "which formulation models the beam: its tip deflection against fe_exact on the \
+               reference mesh and step",
         // Met or not decided to 10 % of the target by the reference's own mesh and step
         // error (`BeamProblem::physical_claim`).
         claim_margin: 10.0,
