@@ -24,8 +24,11 @@ use std::time::{Duration, Instant, SystemTime};
 
 /// Measurement time of a benchmark whose samples fit in it, in seconds.
 pub const MEASUREMENT: f64 = 0.1;
-/// Warm-up time, in seconds (a dearer benchmark warms up with one iteration).
+/// Warm-up time, in seconds, of a benchmark under 12 ms an iteration; a dearer one warms up
+/// for 2.5 iterations' time, so three iterations (criterion doubles them: 1, then 2) and
+/// not one that came out slow (it took twice the calibration once) make its estimate.
 pub const WARM_UP: f64 = 0.03;
+const WARM_UP_ITERATIONS: f64 = 2.5;
 /// How much dearer criterion's warm-up estimate of an iteration may come out than the
 /// calibration before a linear sample no longer fits (costs nothing but samples).
 pub const LINEAR_HEADROOM: f64 = 8.0;
@@ -66,6 +69,8 @@ pub struct Sizing {
     pub samples: usize,
     pub flat: bool,
     /// Seconds.
+    pub warm_up: f64,
+    /// Seconds.
     pub measurement: f64,
 }
 
@@ -82,6 +87,7 @@ impl Sizing {
             return Sizing {
                 samples,
                 flat: false,
+                warm_up: WARM_UP,
                 measurement: MEASUREMENT,
             };
         }
@@ -89,6 +95,7 @@ impl Sizing {
         Sizing {
             samples: MIN_SAMPLES,
             flat: true,
+            warm_up: WARM_UP.max(WARM_UP_ITERATIONS * t),
             measurement: MEASUREMENT
                 .max((CHEAP_HEADROOM * sample).min(2.0 * MEASUREMENT))
                 .max(FLAT_HEADROOM * sample),
@@ -118,8 +125,17 @@ impl Sizing {
 
     /// Expected wall time of warm-up and measurement, in seconds.
     pub fn expected(&self, t: f64) -> f64 {
-        let warm = if t >= WARM_UP { t } else { 2.0 * WARM_UP };
-        warm + self.iterations(t).0.iter().sum::<u64>() as f64 * t
+        let t = t.max(1e-9);
+        // Criterion's warm-up: 1, 2, 4, ... iterations until the warm-up time has passed.
+        let (mut batch, mut warm) = (1_u64, 0_u64);
+        loop {
+            warm += batch;
+            if warm as f64 * t > self.warm_up {
+                break;
+            }
+            batch *= 2;
+        }
+        (warm + self.iterations(t).0.iter().sum::<u64>()) as f64 * t
     }
 
     /// Sets the group's sampling for the benchmarks registered next.
@@ -131,7 +147,7 @@ impl Sizing {
                 SamplingMode::Linear
             })
             .nresamples(RESAMPLES)
-            .warm_up_time(Duration::from_secs_f64(WARM_UP))
+            .warm_up_time(Duration::from_secs_f64(self.warm_up))
             .measurement_time(Duration::from_secs_f64(self.measurement));
     }
 }
