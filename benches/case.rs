@@ -7,14 +7,16 @@
 //! for the median) and its benchmark sampled as `support` sizes it from that cost; each
 //! group's first line gives its expected time. A variant whose run takes over 0.3 s is not
 //! sampled, and the group's second line names it with its cost: criterion needs at least 10
-//! samples of two runs each (one run a sample draws its warning), so each would take over
-//! 6 s, and the 10 or so dearest together would take about 2 of the 10 minutes `cargo bench`
-//! may take on two cores. Here those are explicit Euler and Lie-Euler on free_body/gni, whose
-//! coarsest step, 1.6e-5 s over 100 s, is 6.25 million steps (0.3 to 0.6 s a run:
-//! `euler_xyz`, `euler_zyx`, `rotvec` and `matrix_proj` in both formulations, `so3` spatial),
-//! and `so3/newton_disp/disp_based_n8` on the cyclic fiber column (0.4 s); the `step` bench
-//! still measures their ns/step. `cargo test --benches` runs every variant once, untimed,
-//! these included.
+//! samples of two runs each (one run a sample draws its warning) after three warm-up runs,
+//! so each would take over 7 s, and the dozen dearest together about 2 of the 10 minutes
+//! `cargo bench` may take on two cores. In the run measured for the README those were 12 of
+//! the 603: explicit Euler and Lie-Euler on free_body/gni, whose coarsest step, 1.6e-5 s over
+//! 100 s, is 6.25 million steps (0.31 to 0.70 s a run): `euler` of `euler_xyz`, `euler_zyx`,
+//! `rotvec` and `matrix_proj` in both formulations, `so3/euler/spatial` and `so3/lie_euler`
+//! in both; and `so3/newton_disp/disp_based_n8` on the cyclic fiber column (0.47 s). Which
+//! runs cross 0.3 s moves with the machine's load (another run also dropped
+//! `matrix/euler/spatial` and `so3/euler/body`, 0.35 s). The `step` bench still measures
+//! their ns/step, and `cargo test --benches` runs every variant once, untimed.
 mod support;
 
 use criterion::{BenchmarkId, Criterion};

@@ -25,7 +25,9 @@
 //! `quat/rk4/body` to the hand loop (target: at most 1.5x); a benchmark this run did not
 //! measure (a filter left it out) is listed as missing. `cargo test --benches` runs each
 //! benchmark once, untimed, and prints no table. A first look at the table's benchmarks
-//! alone: `cargo bench --bench step -- nine_spring` (every case's probes still run).
+//! alone: `cargo bench --bench step -- nine_spring` (37 s here; every case's probes still
+//! run). `-- --quick` works too but saves little: criterion's quick mode still spends at
+//! least 0.1 s on a benchmark, and its two samples make a noisier table.
 mod support;
 
 use criterion::{BenchmarkId, Criterion, Throughput};
