@@ -22,7 +22,7 @@ figure{margin:12px 0 20px;min-width:0}
 .plot svg text:not([fill]){fill:#3C3C3C}
 ul.legend{flex:1 1 150px;list-style:none;margin:6px 0 0;padding:0;font-size:12px;
  display:flex;flex-wrap:wrap;flex-direction:column;align-content:flex-start;gap:1px 12px}
-ul.legend li{white-space:nowrap;display:flex;align-items:center;gap:4px}
+ul.legend li{white-space:nowrap;display:flex;align-items:center;gap:4px;--c:#3c3c3c}
 ul.legend li.lh{font-weight:600;color:#444;margin-top:4px}
 .ls{display:inline-block;width:26px;border-top:2px solid var(--c);height:0}
 .lm{color:var(--c)}

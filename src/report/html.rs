@@ -96,11 +96,17 @@ pub fn legend(entries: &[Entry]) -> String {
                     (true, 1) => "<span class=\"ls dash\"></span>".to_string(),
                     (true, k) => format!("<span class=\"ls p{k}\"></span>"),
                 };
-                let glyph = marker.map(super::style::glyph).unwrap_or(' ');
-                s.push_str(&format!(
-                    "<li style=\"--c:{hex}\">{sample}<span class=\"lm\">{glyph}</span>{}</li>",
-                    esc(text)
-                ));
+                // Ink is the rows' default colour (`css.rs`), and a row without a marker
+                // has no marker cell: the rows under one heading stay aligned.
+                let style = if *colour == super::style::INK {
+                    String::new()
+                } else {
+                    format!(" style=\"--c:{hex}\"")
+                };
+                let glyph = marker.map_or(String::new(), |m| {
+                    format!("<span class=\"lm\">{}</span>", super::style::glyph(m))
+                });
+                s.push_str(&format!("<li{style}>{sample}{glyph}{}</li>", esc(text)));
             }
         }
     }
