@@ -66,3 +66,70 @@ fn sentence(scene: &str, r: &ReferenceVariant, agreement: Option<f64>, metric: &
         r.label()
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::summary::{Record, RunKey};
+
+    fn record(integrator: &str, param: &str, dt: f64, err: f64) -> Record {
+        let mut r = Record {
+            key: RunKey {
+                case: "c".into(),
+                scene: "s".into(),
+                param: param.into(),
+                integrator: integrator.into(),
+                formulation: "force_based".into(),
+            },
+            dt: Some(dt),
+            tol: None,
+            status: Status::Ok,
+            failure: None,
+            reason: None,
+            metrics: Default::default(),
+            metric_reasons: Default::default(),
+            stats: Default::default(),
+            wall_s: None,
+            inputs_sha256: String::new(),
+            settings_sha256: None,
+            reference_sha256: None,
+            series: None,
+            series_reason: None,
+        };
+        r.metrics.insert("m".into(), Some(err));
+        r
+    }
+
+    /// The agreement is the largest error of the reference's own variant at its own step over
+    /// the charts; other steps and other integrators do not count, and without such a run the
+    /// note says it was not run.
+    #[test]
+    fn agreement_is_the_own_variant_at_its_step() {
+        let spec = SceneSpec {
+            name: "s".into(),
+            control: false,
+            claim: None,
+            reference_variant: Some(ReferenceVariant {
+                integrator: "newmark".into(),
+                formulation: "force_based".into(),
+                step: 5e-4,
+                step_unit: "s".into(),
+                made_by: "OpenSees 3.7.1".into(),
+            }),
+        };
+        let rs = [
+            record("newmark", "so3", 5e-4, 2e-12),
+            record("newmark", "rotvec", 5e-4, 3e-12),
+            record("newmark", "so3", 1e-3, 1e-4),
+            record("hht", "so3", 5e-4, 1e-5),
+        ];
+        let refs: Vec<&Record> = rs.iter().collect();
+        let n = notes(&[&spec], &refs, "m");
+        assert_eq!(n.len(), 1);
+        assert_eq!(n[0].agreement, Some(3e-12));
+        assert!(n[0].text.contains("reproduces it"), "{}", n[0].text);
+        let n = notes(&[&spec], &refs[2..], "m");
+        assert_eq!(n[0].agreement, None);
+        assert!(n[0].text.contains("was not run"), "{}", n[0].text);
+    }
+}

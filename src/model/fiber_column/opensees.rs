@@ -485,3 +485,33 @@ fn scheme(settings: &Value, opensees: &str) -> Option<ReferenceVariant> {
         made_by: format!("OpenSees {opensees}"),
     })
 }
+
+#[cfg(test)]
+mod scheme_tests {
+    use super::*;
+    use serde_json::json;
+
+    /// A record's scheme is one of our variants only where its settings say so: Newmark with
+    /// gamma 1/2 and beta 1/4 at its dt, DisplacementControl per algorithm at one increment;
+    /// another Newmark or algorithm is none.
+    #[test]
+    fn settings_name_the_variant() {
+        let v = scheme(
+            &json!({"integrator": "Newmark", "gamma": 0.5, "beta": 0.25, "dt": 5e-4}),
+            "3.7.1",
+        )
+        .unwrap();
+        assert_eq!((v.integrator.as_str(), v.step), ("newmark", 5e-4));
+        assert_eq!(v.made_by, "OpenSees 3.7.1");
+        let k = scheme(
+            &json!({"integrator": "DisplacementControl", "algorithm": "KrylovNewton"}),
+            "3.7.1",
+        )
+        .unwrap();
+        assert_eq!((k.integrator.as_str(), k.step), ("newton_disp_krylov", 1.0));
+        let other = json!({"integrator": "Newmark", "gamma": 0.6, "beta": 0.3025, "dt": 5e-4});
+        assert!(scheme(&other, "3.7.1").is_none());
+        let bfgs = json!({"integrator": "DisplacementControl", "algorithm": "BFGS"});
+        assert!(scheme(&bfgs, "3.7.1").is_none());
+    }
+}
