@@ -20,7 +20,6 @@
 mod support;
 
 use criterion::{BenchmarkId, Criterion};
-use mbdbench::case;
 use mbdbench::problem::{self, Want};
 use std::hint::black_box;
 use support::{Sizing, timed};
@@ -33,12 +32,12 @@ fn id(v: &problem::Variant) -> String {
 }
 
 fn whole_runs(c: &mut Criterion) {
-    let cases = case::embedded().expect("embedded cases load");
+    let cases = mbdbench::catalogue::embedded().expect("embedded cases load");
     let references = mbdbench::cli::default_references();
     let measuring = support::measuring();
     for k in &cases {
         let scene = &k.scenes[0];
-        let family = problem::family_of(k);
+        let family = mbdbench::catalogue::family_of(k);
         let mut p = (family.compile)(k, scene).expect("compile");
         p.attach_reference(&references).expect("stored reference");
         let mut skipped = Vec::new();

@@ -34,7 +34,7 @@ use criterion::{BenchmarkId, Criterion, Throughput};
 use mbdbench::case;
 use mbdbench::model::rigid_body::baseline;
 use mbdbench::model::rigid_body::plan;
-use mbdbench::model::rigid_body::registry::Setup;
+use mbdbench::model::rigid_body::registry::RigidSetup;
 use mbdbench::problem::{self, Problem, Variant, Want};
 use mbdbench::run::Stepping;
 use std::hint::black_box;
@@ -60,11 +60,11 @@ const PAIR: &str = "quat/rk4/body";
 
 /// The rigid body and initial state of nine_spring's first scene (large) for the
 /// hand-written loop (the one part of this bench that is the rigid family's own).
-fn setup(k: &case::Case) -> Setup {
+fn setup(k: &case::Case) -> RigidSetup {
     plan::scene_plan(k, &k.scenes[0]).expect("plan").setup
 }
 
-fn baseline_run(setup: &Setup, n: usize, h: f64) -> baseline::Y {
+fn baseline_run(setup: &RigidSetup, n: usize, h: f64) -> baseline::Y {
     let o = &setup.initial;
     let mut y = baseline::Y::zeros();
     y[0] = o.q.w;
@@ -212,9 +212,9 @@ fn bench_baseline(c: &mut Criterion, k: &case::Case, pair: Option<&Chosen>) {
 
 /// Every case's group, and the hand-written loop after nine_spring's.
 fn bench_steps(c: &mut Criterion) {
-    let cases = case::embedded().expect("embedded cases load");
+    let cases = mbdbench::catalogue::embedded().expect("embedded cases load");
     for k in &cases {
-        let family = problem::family_of(k);
+        let family = mbdbench::catalogue::family_of(k);
         let mut p = (family.compile)(k, &k.scenes[0]).expect("compile");
         let (horizon, chosen) = plan_case(&mut *p, family);
         let name = format!("step/{}", k.name);
@@ -268,12 +268,12 @@ fn table(since: SystemTime) {
         return;
     }
     let home = support::criterion_home();
-    let cases = case::embedded().expect("embedded cases load");
+    let cases = mbdbench::catalogue::embedded().expect("embedded cases load");
     let k = cases
         .iter()
         .find(|c| c.name == TABLE_CASE)
         .expect(TABLE_CASE);
-    let family = problem::family_of(k);
+    let family = mbdbench::catalogue::family_of(k);
     println!(
         "\nns/step on {TABLE_CASE}/{}: criterion's estimates of this run (time per iteration, \
          slope or mean as its `time:` line, / steps), from {}/<group>/<id>/new/estimates.json",

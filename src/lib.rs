@@ -1,7 +1,7 @@
 //! mbdbench: a benchmark and verification suite for the numerics of multibody dynamics.
 //!
 //! Canonical problems (`cases/*.toml`, [`case`]) of several model families ([`model`], each
-//! plugged in by one line of the family table, [`problem::FAMILIES`]) run with every rotation
+//! plugged in by one line of the family table, [`catalogue::FAMILIES`]) run with every rotation
 //! parameterization ([`rotation`]), formulation and time integrator ([`integrate`]) that
 //! applies, scored against stored, cross-checked references ([`reference`], [`refgen`]) on
 //! accuracy, energy drift, constraint error and cost ([`metrics`], [`score`]). The binary
@@ -11,9 +11,9 @@
 //! ```
 //! use mbdbench::problem::{self, Stepping, Want};
 //!
-//! let cases = mbdbench::case::embedded().unwrap();
+//! let cases = mbdbench::catalogue::embedded().unwrap();
 //! let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
-//! let family = problem::family_of(c);
+//! let family = mbdbench::catalogue::family_of(c);
 //! let mut p = (family.compile)(c, c.scene("two_angles").unwrap()).unwrap();
 //! p.attach_reference(&mbdbench::cli::default_references()).unwrap();
 //! let v = family.find("so3", "rk4", "body").unwrap();
@@ -24,14 +24,15 @@
 //! ```
 pub mod advise;
 pub mod case;
+pub mod catalogue;
 pub mod cli;
+pub mod digest;
 pub mod gate;
 pub mod integrate;
 pub mod math;
 pub mod metrics;
 pub mod model;
 pub mod output;
-pub mod plan;
 pub mod problem;
 pub mod progress;
 pub mod quiet;
@@ -43,5 +44,6 @@ pub mod run;
 pub mod selection;
 pub mod stability;
 pub mod structural;
+pub mod study;
 pub mod suite;
 pub mod summary;

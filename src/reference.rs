@@ -9,7 +9,6 @@
 //! write never leaves a truncated file that looks complete. A reference is *stale* when its
 //! `inputs_sha256` differs from the case's current one; loading checks it.
 use serde::Serialize;
-use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 
 /// Why a reference cannot be used.
@@ -40,11 +39,8 @@ pub fn path(root: &Path, case: &str, scene: &str) -> PathBuf {
     root.join(case).join(format!("{scene}.json"))
 }
 
-/// Hex SHA-256 of bytes.
-pub fn sha256_hex(bytes: &[u8]) -> String {
-    let d = Sha256::digest(bytes);
-    d.iter().map(|b| format!("{b:02x}")).collect()
-}
+/// Hex SHA-256 of bytes (`digest`, the crate's one digest; here for the families' references).
+pub use crate::digest::sha256_hex;
 
 /// What the shared loader needs of a family's stored reference file.
 pub trait Stored: serde::de::DeserializeOwned {

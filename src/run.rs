@@ -15,7 +15,6 @@
 //! step indices (`Observe::Steps`: the stability search's `t_h / n` steps, the long-horizon study's
 //! log-spaced times).
 use crate::integrate::{Adaptive, Failure, FixedStep, Limits, Stats, System};
-use crate::model::rigid_body::Observation;
 
 /// What a run needs to observe of a state (chart-independent physical state, chart
 /// diagnostics). Each model family has its own observation (a rigid body's pose and twist,
@@ -137,7 +136,7 @@ pub struct Grid {
 
 /// One observation.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Sample<O = Observation> {
+pub struct Sample<O> {
     pub t: f64,
     pub obs: O,
     pub conditioning: f64,
@@ -146,7 +145,7 @@ pub struct Sample<O = Observation> {
 
 /// The outcome of a run.
 #[derive(Debug, Clone)]
-pub struct RunOutput<O = Observation> {
+pub struct RunOutput<O> {
     pub samples: Vec<Sample<O>>,
     /// Index stride of the score grid within `samples`.
     pub score_stride: usize,
@@ -632,7 +631,7 @@ mod tests {
     // tests/fuzz.rs).
     #[test]
     fn over_budget_grid_fails_at_once() {
-        let cases = crate::case::embedded().unwrap();
+        let cases = crate::catalogue::embedded().unwrap();
         let c = cases.iter().find(|c| c.name == "gimbal_lock").unwrap();
         let mut p =
             crate::model::rigid_body::plan::scene_plan(c, c.scene("spin_d1e-2").unwrap()).unwrap();

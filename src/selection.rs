@@ -30,8 +30,6 @@
 //! ```
 use serde::{Deserialize, Serialize};
 
-use crate::summary::RunKey;
-
 /// The ladder tier of a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -83,6 +81,13 @@ pub const MAX_NAMES: usize = 256;
 /// The longest name a selection read from a file may hold (bytes).
 pub const MAX_NAME_LEN: usize = 128;
 
+/// A run's names on the five things a selection filters, in this order: case, scene, param,
+/// integrator, formulation (`summary::RunKey` implements it; `selection` sits below
+/// `summary`, whose files record their selection).
+pub trait RunNames {
+    fn run_names(&self) -> [&str; 5];
+}
+
 fn keep(list: &[String], name: &str) -> bool {
     list.is_empty() || list.iter().any(|x| x == name)
 }
@@ -107,12 +112,13 @@ impl Selection {
     }
 
     /// Whether a run of this key is selected (its ladder point is the tier's business).
-    pub fn admits(&self, k: &RunKey) -> bool {
-        keep(&self.cases, &k.case)
-            && keep(&self.scenes, &k.scene)
-            && keep(&self.params, &k.param)
-            && keep(&self.integrators, &k.integrator)
-            && keep(&self.formulations, &k.formulation)
+    pub fn admits(&self, k: &impl RunNames) -> bool {
+        let [case, scene, param, integrator, formulation] = k.run_names();
+        keep(&self.cases, case)
+            && keep(&self.scenes, scene)
+            && keep(&self.params, param)
+            && keep(&self.integrators, integrator)
+            && keep(&self.formulations, formulation)
     }
 
     /// Whether this selection holds every run `other` selects, at the same tier and horizon.
@@ -246,6 +252,26 @@ impl Selection {
     }
 }
 
+/// Variant filters (empty = all).
+#[derive(Debug, Clone, Default)]
+pub struct VariantFilter {
+    pub param: Vec<String>,
+    pub integrator: Vec<String>,
+    pub formulation: Vec<String>,
+}
+
+impl VariantFilter {
+    fn keep(list: &[String], v: &str) -> bool {
+        list.is_empty() || list.iter().any(|x| x == v)
+    }
+    /// Whether a combination passes.
+    pub fn admits(&self, param: &str, integrator: &str, formulation: &str) -> bool {
+        Self::keep(&self.param, param)
+            && Self::keep(&self.integrator, integrator)
+            && Self::keep(&self.formulation, formulation)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -281,6 +307,7 @@ mod tests {
     /// `admits` selects a key exactly when every filter names it (or is empty).
     #[test]
     fn admits_matches_every_filter() {
+        use crate::summary::RunKey;
         let s = sel(&["nine_spring"], &["so3", "quat_proj"]);
         assert!(s.admits(&RunKey::new("nine_spring", "x", "so3", "rk4", "body")));
         assert!(s.admits(&RunKey::new(

@@ -14,82 +14,12 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use crate::case::Case;
-use crate::integrate::MethodInfo;
+use crate::catalogue::Ordered;
 use crate::metrics::order;
 use crate::output;
 use crate::problem::{self, Entry, Problem, Variant, Want};
+use crate::selection::VariantFilter;
 use crate::summary::{self, Env, FitRecord, Record, RunKey, Status, Summary, Wall};
-
-/// Step ladders per method order class, and tolerances for adaptive methods.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Ladders {
-    pub order1: Vec<f64>,
-    pub order2_4: Vec<f64>,
-    pub order6: Vec<f64>,
-    pub tol: Vec<f64>,
-}
-
-impl Ladders {
-    /// The ladder a method runs on.
-    pub fn for_method(&self, info: &MethodInfo) -> &[f64] {
-        if info.adaptive {
-            &self.tol
-        } else if info.order <= 1 {
-            &self.order1
-        } else if info.order <= 4 {
-            &self.order2_4
-        } else {
-            &self.order6
-        }
-    }
-}
-
-/// Variant filters (empty = all).
-#[derive(Debug, Clone, Default)]
-pub struct VariantFilter {
-    pub param: Vec<String>,
-    pub integrator: Vec<String>,
-    pub formulation: Vec<String>,
-}
-
-impl VariantFilter {
-    fn keep(list: &[String], v: &str) -> bool {
-        list.is_empty() || list.iter().any(|x| x == v)
-    }
-    /// Whether a combination passes.
-    pub fn admits(&self, param: &str, integrator: &str, formulation: &str) -> bool {
-        Self::keep(&self.param, param)
-            && Self::keep(&self.integrator, integrator)
-            && Self::keep(&self.formulation, formulation)
-    }
-    /// Names in the filter that are not a name of any family's axes (bad input).
-    pub fn unknown_names(&self) -> Vec<String> {
-        let fams = problem::FAMILIES;
-        let mut bad = vec![];
-        for p in &self.param {
-            if !fams.iter().any(|f| f.axes.params.contains(&p.as_str())) {
-                bad.push(format!("--param {p}"));
-            }
-        }
-        for i in &self.integrator {
-            if !fams
-                .iter()
-                .any(|f| (f.variants)().iter().any(|v| v.integrator == i))
-            {
-                bad.push(format!("--integrator {i}"));
-            }
-        }
-        for f in &self.formulation {
-            if !fams
-                .iter()
-                .any(|x| x.axes.formulations.contains(&f.as_str()))
-            {
-                bad.push(format!("--formulation {f}"));
-            }
-        }
-        bad
-    }
-}
 
 /// Options of a catalogue run.
 #[derive(Debug, Clone)]
@@ -206,95 +136,15 @@ pub fn run_catalogue(
 ) -> Result<Summary, String> {
     let started = std::time::Instant::now();
     prepare(&mut problems, opts)?;
-    let mut jobs: Vec<Job> = vec![];
-    let mut records: Vec<Record> = vec![];
-    for (pi, p) in problems.iter().enumerate() {
-        for cell in problem::matrix(p.family()) {
-            if !filter.admits(cell.param, cell.integrator, cell.formulation) {
-                continue;
-            }
-            let v = match cell.entry {
-                Entry::NotApplicable(why) => {
-                    let mut r = base_record(&**p, cell.param, cell.integrator, cell.formulation);
-                    r.reason = Some(why);
-                    records.push(r);
-                    continue;
-                }
-                Entry::Registered(v) => v,
-            };
-            if let Some(why) = p.na_reason(v) {
-                let mut r = base_record(&**p, cell.param, cell.integrator, cell.formulation);
-                r.reason = Some(why);
-                records.push(r);
-                continue;
-            }
-            for &value in p.ladder(opts.quick, &v.info) {
-                jobs.push(Job {
-                    problem: pi,
-                    variant: v,
-                    value,
-                });
-            }
-        }
-    }
-    // Longest first (by step count, `t_end / dt`; adaptive runs last), one job per rayon
-    // task (`with_max_len(1)`): the parallel pass then ends on short runs. Without it rayon
-    // hands each thread a contiguous block it cannot split once started, and one core ground
-    // through the long Euler runs alone (full ladder: 60.6 s wall on 2 cores for 70.7 s of
-    // work). Records are sorted below, so the order does not show in the summary.
-    let steps = |j: &Job| {
-        if j.variant.info.adaptive {
-            0.0
-        } else {
-            problems[j.problem].t_end() / j.value
-        }
-    };
-    jobs.sort_by(|a, b| steps(b).total_cmp(&steps(a)));
-    let total = jobs.len();
-    let progress = crate::progress::Progress::new(total, "results", "runs", 20, opts.progress);
+    let (mut jobs, mut records) = plan_jobs(&problems, filter, opts.quick);
+    sort_longest_first(&problems, &mut jobs);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.jobs.max(1))
         .build()
         .map_err(|e| e.to_string())?;
-    let mut done: Vec<Done> = pool.install(|| {
-        jobs.par_iter()
-            .with_max_len(1)
-            .map(|job| {
-                let d = run_job(&*problems[job.problem], job);
-                progress.tick();
-                d
-            })
-            .collect()
-    });
-    progress.finish();
-    // The timing pass, after the results pass: runs without observation, one job per
-    // worker at a time (one rayon task per job, longest first: `jobs` is sorted), or on this
-    // thread alone with `--serial-timing`. Two runs on two cores slow each other by about 1 %
-    // (measured, README "Benchmarks").
+    let mut done = results_pass(&pool, &problems, &jobs, opts);
     if opts.repeats > 0 {
-        let timing = crate::progress::Progress::new(total, "timing", "runs", 20, opts.progress);
-        // A failed run is not timed: its wall time says nothing about the method, and a run
-        // that ends at its work budget would cost that budget again per repeat.
-        let time_one = |job: &Job, d: &mut Done| {
-            if d.record.status == Status::Ok {
-                let p = &*problems[job.problem];
-                d.record.wall_s = time_run(p, job.variant, job.value, opts.repeats);
-            }
-            timing.tick();
-        };
-        if opts.serial_timing {
-            for (job, d) in jobs.iter().zip(done.iter_mut()) {
-                time_one(job, d);
-            }
-        } else {
-            pool.install(|| {
-                jobs.par_iter()
-                    .zip(done.par_iter_mut())
-                    .with_max_len(1)
-                    .for_each(|(job, d)| time_one(job, d));
-            });
-        }
-        timing.finish();
+        timing_pass(&pool, &problems, &jobs, &mut done, opts);
     }
     keep_drawn_series(&problems, &jobs, &mut done);
     // The new output is built beside the folder and swapped in whole (`output`): a reader
@@ -311,32 +161,9 @@ pub fn run_catalogue(
     let mut fits = fit_orders(&problems, &records);
     let mut selection = opts.selection(filter);
     if let Some(base) = &opts.base {
-        let kept = |k: &RunKey| !selection.admits(k);
-        for r in base.records.iter().filter(|r| kept(&r.key)) {
-            if let Some(rel) = &r.series {
-                let bytes =
-                    crate::read_limited::read(&opts.out.join(rel), crate::read_limited::SERIES)
-                        .map_err(|e| format!("{e}; cannot keep it"))?;
-                staging.write(rel, &bytes)?;
-            }
-            records.push(r.clone());
-        }
-        fits.extend(base.fits.iter().filter(|f| kept(&f.key)).cloned());
-        fits.sort_by_key(|f| {
-            let k = &f.key;
-            (
-                k.case.clone(),
-                k.scene.clone(),
-                k.variant_order(),
-                f.metric.clone(),
-            )
-        });
-        selection = base
-            .selection
-            .clone()
-            .unwrap_or_else(|| crate::selection::Selection::everything(selection.tier));
+        selection = keep_base_runs(base, &mut staging, &mut records, &mut fits, selection, opts)?;
     }
-    records.sort_by_key(Record::report_order);
+    records.sort_by_key(crate::catalogue::report_order);
     let mut env = Env::current(opts.jobs, Some(opts.timing_mode()));
     env.elapsed_s = Some(started.elapsed().as_secs_f64());
     let summary = Summary {
@@ -348,18 +175,176 @@ pub fn run_catalogue(
         fits,
         selection: Some(selection),
     };
+    commit_summary(&summary, staging, opts)?;
+    Ok(summary)
+}
+
+/// The runs of the selected variants over every problem's ladder (one job per ladder point),
+/// and the records of the combinations that do not apply (`n/a`, with the reason).
+fn plan_jobs(
+    problems: &[Box<dyn Problem>],
+    filter: &VariantFilter,
+    quick: bool,
+) -> (Vec<Job>, Vec<Record>) {
+    let mut jobs: Vec<Job> = vec![];
+    let mut records: Vec<Record> = vec![];
+    for (pi, p) in problems.iter().enumerate() {
+        for cell in problem::matrix(p.family()) {
+            if !filter.admits(cell.param, cell.integrator, cell.formulation) {
+                continue;
+            }
+            let applies = match cell.entry {
+                Entry::NotApplicable(why) => Err(why),
+                Entry::Registered(v) => p.na_reason(v).map_or(Ok(v), Err),
+            };
+            let v = match applies {
+                Ok(v) => v,
+                Err(why) => {
+                    let mut r = base_record(&**p, cell.param, cell.integrator, cell.formulation);
+                    r.reason = Some(why);
+                    records.push(r);
+                    continue;
+                }
+            };
+            for &value in p.ladder(quick, &v.info) {
+                jobs.push(Job {
+                    problem: pi,
+                    variant: v,
+                    value,
+                });
+            }
+        }
+    }
+    (jobs, records)
+}
+
+/// Longest first (by step count, `t_end / dt`; adaptive runs last), so that the parallel
+/// passes, one job per rayon task (`with_max_len(1)`), end on short runs. Without it rayon
+/// hands each thread a contiguous block it cannot split once started, and one core ground
+/// through the long Euler runs alone (full ladder: 60.6 s wall on 2 cores for 70.7 s of
+/// work). Records are sorted before they are written, so the order does not show in the
+/// summary.
+fn sort_longest_first(problems: &[Box<dyn Problem>], jobs: &mut [Job]) {
+    let steps = |j: &Job| {
+        if j.variant.info.adaptive {
+            0.0
+        } else {
+            problems[j.problem].t_end() / j.value
+        }
+    };
+    jobs.sort_by(|a, b| steps(b).total_cmp(&steps(a)));
+}
+
+/// The results pass: every job scored, in parallel on the pool, one job per task.
+fn results_pass(
+    pool: &rayon::ThreadPool,
+    problems: &[Box<dyn Problem>],
+    jobs: &[Job],
+    opts: &RunOptions,
+) -> Vec<Done> {
+    let progress = crate::progress::Progress::new(jobs.len(), "results", "runs", 20, opts.progress);
+    let done: Vec<Done> = pool.install(|| {
+        jobs.par_iter()
+            .with_max_len(1)
+            .map(|job| {
+                let d = run_job(&*problems[job.problem], job);
+                progress.tick();
+                d
+            })
+            .collect()
+    });
+    progress.finish();
+    done
+}
+
+/// The timing pass, after the results pass: runs without observation, one job per worker at
+/// a time (one rayon task per job, longest first: `jobs` is sorted), or on this thread alone
+/// with `--serial-timing`. Two runs on two cores slow each other by about 1 % (measured,
+/// README "Benchmarks"). A failed run is not timed: its wall time says nothing about the
+/// method, and a run that ends at its work budget would cost that budget again per repeat.
+fn timing_pass(
+    pool: &rayon::ThreadPool,
+    problems: &[Box<dyn Problem>],
+    jobs: &[Job],
+    done: &mut [Done],
+    opts: &RunOptions,
+) {
+    let timing = crate::progress::Progress::new(jobs.len(), "timing", "runs", 20, opts.progress);
+    let time_one = |job: &Job, d: &mut Done| {
+        if d.record.status == Status::Ok {
+            let p = &*problems[job.problem];
+            d.record.wall_s = time_run(p, job.variant, job.value, opts.repeats);
+        }
+        timing.tick();
+    };
+    if opts.serial_timing {
+        for (job, d) in jobs.iter().zip(done.iter_mut()) {
+            time_one(job, d);
+        }
+    } else {
+        pool.install(|| {
+            jobs.par_iter()
+                .zip(done.par_iter_mut())
+                .with_max_len(1)
+                .for_each(|(job, d)| time_one(job, d));
+        });
+    }
+    timing.finish();
+}
+
+/// A run over part of an earlier summary (`--base`): keeps the earlier records, fits and
+/// series this run's selection does not cover, and returns the earlier selection (the whole
+/// summary's).
+fn keep_base_runs(
+    base: &Summary,
+    staging: &mut output::Staging,
+    records: &mut Vec<Record>,
+    fits: &mut Vec<FitRecord>,
+    selection: crate::selection::Selection,
+    opts: &RunOptions,
+) -> Result<crate::selection::Selection, String> {
+    let kept = |k: &RunKey| !selection.admits(k);
+    for r in base.records.iter().filter(|r| kept(&r.key)) {
+        if let Some(rel) = &r.series {
+            let bytes = crate::read_limited::read(&opts.out.join(rel), crate::read_limited::SERIES)
+                .map_err(|e| format!("{e}; cannot keep it"))?;
+            staging.write(rel, &bytes)?;
+        }
+        records.push(r.clone());
+    }
+    fits.extend(base.fits.iter().filter(|f| kept(&f.key)).cloned());
+    fits.sort_by_key(|f| {
+        let k = &f.key;
+        (
+            k.case.clone(),
+            k.scene.clone(),
+            k.variant_order(),
+            f.metric.clone(),
+        )
+    });
+    Ok(base
+        .selection
+        .clone()
+        .unwrap_or_else(|| crate::selection::Selection::everything(selection.tier)))
+}
+
+/// Writes `summary.json` into the staged folder and swaps the folder in. A stability study
+/// beside the old summary that is not of this build and selection would be judged beside
+/// this run: it goes with the old output (unusable, too).
+fn commit_summary(
+    summary: &Summary,
+    mut staging: output::Staging,
+    opts: &RunOptions,
+) -> Result<(), String> {
     let text = summary.to_json_lines().map_err(|e| e.to_string())?;
     staging.write("summary.json", text.as_bytes())?;
-    // A stability study beside the old summary that is not of this build and selection
-    // would be judged beside this run: it goes with the old output (unusable, too).
     let beside = crate::gate::stability_beside(&opts.out.join("summary.json"));
     if !matches!(&beside, Ok(None))
         && !matches!(&beside, Ok(Some(st)) if summary.pairs_with(st).is_ok())
     {
         staging.replace(output::Writer::Stability);
     }
-    staging.commit()?;
-    Ok(summary)
+    staging.commit().map(|_| ())
 }
 
 /// Significant digits of the numbers in a series file: plot data (a figure resolves a few
@@ -625,11 +610,11 @@ pub fn print_table(
         let primary = case_file
             .map(|c| c.primary_metric.clone())
             .unwrap_or_else(|| {
-                let family = crate::problem::family_of_case(case_file, last.values().copied());
+                let family = crate::catalogue::family_of_case(case_file, last.values().copied());
                 family.default_primary().to_string()
             });
         let mut keys: Vec<_> = last.keys().copied().collect();
-        keys.sort_by_key(|(p, i, f)| problem::variant_order(p, i, f));
+        keys.sort_by_key(|(p, i, f)| crate::catalogue::variant_order(p, i, f));
         for k in keys {
             let r = last[&k];
             let order = fits

@@ -50,16 +50,23 @@ impl RunKey {
         }
     }
 
-    /// The variant's place in the families' axis order (`problem::axis_names`).
-    pub fn variant_order(&self) -> [usize; 3] {
-        crate::problem::variant_order(&self.param, &self.integrator, &self.formulation)
-    }
-
     /// Whether both keys name the same variant (on any case and scene).
     pub fn same_variant(&self, o: &RunKey) -> bool {
         self.param == o.param
             && self.integrator == o.integrator
             && self.formulation == o.formulation
+    }
+}
+
+impl crate::selection::RunNames for RunKey {
+    fn run_names(&self) -> [&str; 5] {
+        [
+            &self.case,
+            &self.scene,
+            &self.param,
+            &self.integrator,
+            &self.formulation,
+        ]
     }
 }
 
@@ -152,23 +159,6 @@ impl Record {
             0.0,
             message,
         ));
-    }
-
-    /// The variant's place in the families' axis order (`problem::axis_names`).
-    pub fn variant_order(&self) -> [usize; 3] {
-        self.key.variant_order()
-    }
-
-    /// The report order of records: case, scene, variant, then coarse steps (loose
-    /// tolerances) first, so the finest ladder point of a variant is its last record.
-    pub fn report_order(&self) -> (String, String, [usize; 3], u64, u64) {
-        (
-            self.key.case.clone(),
-            self.key.scene.clone(),
-            self.variant_order(),
-            self.dt.map_or(0, |x| u64::MAX - x.to_bits()),
-            self.tol.map_or(0, |x| u64::MAX - x.to_bits()),
-        )
     }
 }
 

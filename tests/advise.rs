@@ -33,7 +33,7 @@ fn advice_holds_against_the_summary() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let summary = mbdbench::gate::load_summary(&out.join("summary.json")).unwrap();
-    let cases = mbdbench::case::embedded().unwrap();
+    let cases = mbdbench::catalogue::embedded().unwrap();
     let root = default_references();
     let reference = |c: &mbdbench::case::Case, scene: &str| {
         advise::stored_reference(&root, c, scene, &c.primary_metric, advise::Claim::Accuracy)

@@ -12,7 +12,7 @@ use std::alloc::{GlobalAlloc, Layout, System as SysAlloc};
 use std::cell::Cell;
 
 use mbdbench::case::{self, Case};
-use mbdbench::problem::{self, Stepping, Want};
+use mbdbench::problem::{Stepping, Want};
 
 struct Counting;
 
@@ -78,7 +78,7 @@ fn edited(name: &str, edits: &[(&str, &str)]) -> (String, String) {
 
 fn load(name: &str, edits: &[(&str, &str)]) -> Case {
     let (label, text) = edited(name, edits);
-    case::load_str(&label, &text).unwrap_or_else(|e| panic!("{e}"))
+    mbdbench::catalogue::load_str(&label, &text).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Case files whose numbers ask for gigabytes (a 384 GB protocol, 1e10 fibers, 1e12
@@ -139,7 +139,7 @@ fn hostile_numbers_are_refused_before_anything_large_exists() {
     ];
     for (name, old, new, key) in cases {
         let (label, text) = edited(name, &[(old, new)]);
-        let (r, peak) = peak_of(|| case::load_str(&label, &text));
+        let (r, peak) = peak_of(|| mbdbench::catalogue::load_str(&label, &text));
         let e = r.expect_err(new);
         assert_eq!(e.file, label);
         assert_eq!(e.key, key, "{new}: {e}");
@@ -151,7 +151,7 @@ fn hostile_numbers_are_refused_before_anything_large_exists() {
 /// its peak heap lies within the scene's estimate, which is at most `slack` times it.
 fn run_within(c: &Case, scene: &str, variant: (&str, &str, &str), dt: f64, t_end: f64, slack: f64) {
     let s = c.scene(scene).expect("a scene");
-    let family = problem::family_of(c);
+    let family = mbdbench::catalogue::family_of(c);
     let e = (family.estimate)(c, s);
     let v = family
         .find(variant.0, variant.1, variant.2)

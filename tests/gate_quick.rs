@@ -12,7 +12,7 @@ use mbdbench::gate::{self, GateOptions, Verdict};
 #[test]
 fn real_quick_tier_passes_gates_and_baseline() {
     let mut rows = vec![];
-    let cases = mbdbench::case::embedded().unwrap();
+    let cases = mbdbench::catalogue::embedded().unwrap();
     let out = common::temp_dir("gate-quick");
     let opts = mbdbench::suite::RunOptions {
         quick: true,
@@ -27,10 +27,13 @@ fn real_quick_tier_passes_gates_and_baseline() {
         scenes: vec![],
         base: None,
     };
-    let problems = mbdbench::plan::problems(&cases, &[], &[]).unwrap();
-    let summary =
-        mbdbench::suite::run_catalogue(problems, &mbdbench::suite::VariantFilter::default(), &opts)
-            .unwrap();
+    let problems = mbdbench::catalogue::problems(&cases, &[], &[]).unwrap();
+    let summary = mbdbench::suite::run_catalogue(
+        problems,
+        &mbdbench::selection::VariantFilter::default(),
+        &opts,
+    )
+    .unwrap();
     let baseline =
         std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reports/baseline/quick.json");
     let gopts = GateOptions {
@@ -49,11 +52,11 @@ fn real_quick_tier_passes_gates_and_baseline() {
         references: mbdbench::cli::default_references(),
         progress: false,
     };
-    let stability = mbdbench::stability::run_study(
+    let stability = mbdbench::study::run_study(
         &cases,
         &[],
         &[],
-        &mbdbench::suite::VariantFilter::default(),
+        &mbdbench::selection::VariantFilter::default(),
         &sopts,
     )
     .unwrap();

@@ -43,7 +43,10 @@ fn simo_wong_conserves_energy_to_round_off() {
     }
 }
 
-fn energy_window_ratio(body: &RigidBody, out: &mbdbench::run::RunOutput) -> (f64, f64) {
+fn energy_window_ratio(
+    body: &RigidBody,
+    out: &mbdbench::run::RunOutput<mbdbench::model::rigid_body::Observation>,
+) -> (f64, f64) {
     let e: Vec<f64> = out.scored().map(|s| body.energy(&s.obs)).collect();
     let e0 = e[0];
     let n = e.len();

@@ -126,7 +126,7 @@ fn steps_do_not_allocate() {
 /// allocated per step (only the setup and the reserved sample vector).
 #[test]
 fn registry_run_allocations_do_not_grow_with_steps() {
-    let cases = mbdbench::case::embedded().unwrap();
+    let cases = mbdbench::catalogue::embedded().unwrap();
     let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
     let mut p =
         mbdbench::model::rigid_body::plan::scene_plan(c, c.scene("large").unwrap()).unwrap();

@@ -9,6 +9,7 @@
 use std::collections::BTreeMap;
 
 use super::{Avoid, CaseSpec, MIN_CONDITIONING, SceneSpec};
+use crate::catalogue::{Ordered, report_order};
 use crate::metrics::order::{ASYMPTOTIC_SPREAD, slope_spread};
 use crate::summary::{FitRecord, Record, Status};
 
@@ -85,7 +86,7 @@ pub(super) fn avoid(
             let k = (r.variant_order(), r.key.scene.clone());
             let finer = finest
                 .get(&k)
-                .is_none_or(|f| r.report_order() > f.report_order());
+                .is_none_or(|f| report_order(r) > report_order(f));
             if finer {
                 finest.insert(k, r);
             }

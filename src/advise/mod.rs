@@ -55,7 +55,7 @@
 //!
 //! use mbdbench::summary::{Env, Summary};
 //!
-//! let cases = mbdbench::case::embedded().unwrap();
+//! let cases = mbdbench::catalogue::embedded().unwrap();
 //! let summary = Summary {
 //!     schema: 1,
 //!     git_commit: "-".into(),
@@ -182,7 +182,7 @@ pub fn stored_reference(
     claim: Claim,
 ) -> SceneReference {
     let attached = case.scene(scene).and_then(|s| {
-        let mut p = (crate::problem::family_of(case).compile)(case, s).ok()?;
+        let mut p = (crate::catalogue::family_of(case).compile)(case, s).ok()?;
         p.attach_reference(root).ok()?;
         Some(p)
     });
@@ -204,7 +204,7 @@ pub fn specs(cases: &[Case], reference: &dyn Fn(&Case, &str) -> SceneReference) 
     cases
         .iter()
         .map(|c| {
-            let family = crate::problem::family_of(c);
+            let family = crate::catalogue::family_of(c);
             let unit = family
                 .metrics
                 .iter()

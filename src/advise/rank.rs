@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 
 use super::TargetAdvice;
 use super::{By, CaseSpec, MIN_TIMED_S, Pick, SceneSpec, Setting, Skipped, TIE_REL};
+use crate::catalogue::Ordered;
 use crate::summary::{Record, Status};
 
 /// A variant's runs grouped by scene, keyed by the family's variant order.

@@ -1,6 +1,6 @@
 //! The "at what step" part of the recommendation, from the stability study (`stability.json`
 //! beside the summary): per scene of a case, each searched variant's largest stable step and
-//! largest accurate step (`stability::search`: the largest `dt`, or loosest `tol`, whose run
+//! largest accurate step (`model::rigid_body::stability::search`: the largest `dt`, or loosest `tol`, whose run
 //! stays within the energy bound, resp. the accuracy bound, over the study's horizon), ranked
 //! by the largest accurate step, then the largest stable one; what limits the stable step
 //! (the study's reason, e.g. `newton_failure` or `bound_exceeded`) is kept. Fixed-step

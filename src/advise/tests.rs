@@ -142,7 +142,7 @@ fn ties_follow_the_family_order() {
     ]);
     let a = advise(&s, &[spec(0.0)], &Options::default());
     let t = &a.cases[0].targets[0];
-    let order = |p: &str| crate::problem::variant_order(p, "rk4", "body");
+    let order = |p: &str| crate::catalogue::variant_order(p, "rk4", "body");
     let first = if order("quat") < order("so3") {
         "quat"
     } else {

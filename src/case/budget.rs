@@ -4,7 +4,7 @@
 //! may be raised up to their hard caps ([`HARD_CAPS`]); a key above its cap is refused when
 //! the case loads. Every family declares an estimate of what one run of a scene needs
 //! (`problem::Family::estimate`, an [`Estimate`] made from the case's parsed numbers, before
-//! anything that grows with them exists); `case::load_str` checks it with [`check`] for every
+//! anything that grows with them exists); `catalogue::load_str` checks it with [`check`] for every
 //! scene, so a case whose run would pass a budget is refused at load (`list` included, exit
 //! 2, naming the file and the key that sets the cost). A run that passes its step or RHS
 //! budget anyway (the count of an adaptive or Newton iteration is not known up front) ends
@@ -31,19 +31,11 @@
 //! ```
 use super::{Case, CaseError, Scene};
 
-/// `max_steps` when a case does not set it.
-pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;
-
-/// `max_rhs_evals` (every run) when a case does not set it: a fixed-step run is bounded by
-/// `max_steps` before it starts, so this only stops a runaway Newton iteration count.
-pub const DEFAULT_MAX_RHS_EVALS: u64 = 2_000_000_000;
-
-/// `max_adaptive_rhs_evals` when a case does not set it: the RHS budget of an adaptive run,
-/// whose work is not known up front. The catalogue's costliest adaptive run takes 251,741
-/// (`gimbal_lock/spin_d1e-8`, `euler_zyx/dop853` at tol 1e-12); a run that diverges at a
-/// loose tolerance crawls on steps of 1e-7 s and would take 1e8 steps (`se3_hq/dopri5` at
-/// tol 0.5 on `nine_spring/two_angles`: 7.8e8 evaluations, 413 s).
-pub const DEFAULT_MAX_ADAPTIVE_RHS_EVALS: u64 = 1_000_000;
+/// The default work budgets of a run are the run loop's (`integrate::Limits::default`); a case
+/// file's `max_steps`, `max_rhs_evals` and `max_adaptive_rhs_evals` replace them.
+pub use crate::integrate::{
+    DEFAULT_MAX_ADAPTIVE_RHS_EVALS, DEFAULT_MAX_RHS_EVALS, DEFAULT_MAX_STEPS,
+};
 
 /// `max_memory_mib` when a case does not set it: the most memory (MiB) one run of a scene
 /// may hold by its family's estimate. Two runs at once (`--jobs 2`) stay within 1.5 GB with
@@ -255,7 +247,7 @@ pub fn ode_estimate(case: &Case, scene: &Scene, c: &OdeCosts) -> Estimate {
 /// `t = 0` with exit 1, the fiber column refused it with exit 2).
 pub fn over_step_budget(case: &Case, scene: &Scene, t_end: f64, dt: f64) -> Option<String> {
     let n = super::steps_dividing(t_end, dt)?;
-    let prelude = (crate::problem::family_of(case).estimate)(case, scene).prelude_steps;
+    let prelude = case.family.estimate(case, scene).prelude_steps;
     (n.saturating_add(prelude) > case.max_steps).then(|| {
         format!(
             "needs {n} steps over t_end = {t_end} s ({prelude} more before t = 0), more than \
@@ -333,7 +325,9 @@ mod tests {
     /// on a run's peak memory), so the budget is what bounds memory.
     #[test]
     fn sample_budget_fits_in_200_mb() {
-        let bytes = std::mem::size_of::<crate::run::Sample>() as u64 * MAX_SAMPLES;
+        let bytes = std::mem::size_of::<crate::run::Sample<crate::model::rigid_body::Observation>>()
+            as u64
+            * MAX_SAMPLES;
         assert!(bytes <= 200 << 20, "{bytes} bytes");
     }
 
@@ -359,9 +353,9 @@ mod tests {
     #[test]
     fn small_state_estimates_count_samples_steps_and_budgets() {
         let text = include_str!("../../cases/nine_spring.toml");
-        let c = crate::case::load_str("cases/nine_spring.toml", text).unwrap();
+        let c = crate::catalogue::load_str("cases/nine_spring.toml", text).unwrap();
         let s = c.scene("two_angles").unwrap();
-        let e = (crate::problem::family_of(&c).estimate)(&c, s);
+        let e = (crate::catalogue::family_of(&c).estimate)(&c, s);
         assert_eq!(e.bytes, 1001 * 400);
         assert_eq!(
             (e.steps, e.steps_key.as_str()),
@@ -379,7 +373,7 @@ mod tests {
             (600_000_000, "max_adaptive_rhs_evals")
         );
         let fine = text.replacen("7.8125e-6]", "1.0e-7]", 1);
-        let e = crate::case::load_str("cases/nine_spring.toml", &fine).unwrap_err();
+        let e = crate::catalogue::load_str("cases/nine_spring.toml", &fine).unwrap_err();
         assert_eq!(e.key, "ladders.order1[2]", "{e}");
         assert!(e.message.contains("max_work"), "{e}");
     }

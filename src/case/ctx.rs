@@ -148,12 +148,12 @@ impl Ctx<'_> {
     }
 
     /// Refuses a `reference` kind the family cannot attach.
-    fn reference_kind(&self, family: &crate::problem::Family, kind: ReferenceKind) -> Res<()> {
-        if family.references.contains(&kind) {
+    fn reference_kind(&self, family: &dyn super::CaseFamily, kind: ReferenceKind) -> Res<()> {
+        if family.references().contains(&kind) {
             return Ok(());
         }
         let kinds: Vec<String> = family
-            .references
+            .references()
             .iter()
             .map(|k| format!("`{}`", k.name()))
             .collect();
@@ -162,7 +162,7 @@ impl Ctx<'_> {
             format!(
                 "`{}`; a {} case's references are {}",
                 kind.name(),
-                family.model,
+                family.model(),
                 kinds.join(" or ")
             ),
         )
@@ -173,25 +173,21 @@ impl Ctx<'_> {
     /// resolves every scene's grid and ladders, then the gates and `[stability]`.
     pub fn assemble<C: Payload, O, S: Payload>(
         &self,
-        family: &'static crate::problem::Family,
+        family: &'static dyn super::CaseFamily,
         raw: RawShared,
         case_physics: impl FnOnce(&Self) -> Res<C>,
         scenes: Vec<(RawGrid, O)>,
         scene_physics: impl Fn(&Self, usize, &O, &C) -> Res<S>,
     ) -> Res<Case> {
         self.identity(&raw)?;
-        if !family.has_metric(&raw.primary_metric) {
+        let metrics = family.metric_names();
+        if !metrics.contains(&raw.primary_metric.as_str()) {
             return self.err(
                 "primary_metric",
                 format!(
                     "unknown metric `{}`; expected one of {}",
                     raw.primary_metric,
-                    family
-                        .metrics
-                        .iter()
-                        .map(|m| m.name)
-                        .collect::<Vec<_>>()
-                        .join(", ")
+                    metrics.join(", ")
                 ),
             );
         }
@@ -249,7 +245,7 @@ impl Ctx<'_> {
             .gates
             .into_iter()
             .enumerate()
-            .map(|(i, g)| self.gate(i, g, &out, family.axes.formulations))
+            .map(|(i, g)| self.gate(i, g, &out, family.formulations()))
             .collect::<Res<Vec<_>>>()?;
         let stability = raw
             .stability
@@ -259,7 +255,8 @@ impl Ctx<'_> {
             file: self.file.to_string(),
             name: raw.case,
             title: raw.title,
-            model: family.model,
+            model: family.model(),
+            family,
             primary_metric: raw.primary_metric,
             energy_scale,
             reference: raw.reference,

@@ -28,7 +28,7 @@
 //! # Example
 //!
 //! ```
-//! let cases = mbdbench::case::embedded().unwrap();
+//! let cases = mbdbench::catalogue::embedded().unwrap();
 //! let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
 //! let s = c.scene("two_angles").unwrap();
 //! let inputs = mbdbench::case::inputs_sha256(c, s);
@@ -37,7 +37,6 @@
 //! assert_ne!(inputs, s.settings_sha256);
 //! ```
 use serde_json::Value;
-use sha2::{Digest, Sha256};
 
 use super::{Case, CaseError, Scene};
 
@@ -86,9 +85,7 @@ pub fn inputs_sha256(case: &Case, scene: &Scene) -> String {
 
 /// Hex SHA-256 of a value's canonical JSON.
 pub fn sha256_of(v: &Value) -> String {
-    let json = canonical_json(v);
-    let digest = Sha256::digest(json.as_bytes());
-    digest.iter().map(|b| format!("{b:02x}")).collect()
+    crate::digest::sha256_hex(canonical_json(v).as_bytes())
 }
 
 /// A number as the hash writes it (`-0.0` as `0.0`).
@@ -98,7 +95,7 @@ pub fn num(x: f64) -> Value {
 
 /// The value `inputs_sha256` hashes (exposed for provenance and debugging).
 pub fn inputs_value(case: &Case, scene: &Scene) -> Value {
-    let mut m = (crate::problem::family_of(case).inputs)(case, scene);
+    let mut m = case.family.inputs(case, scene);
     m.insert("case".into(), Value::from(case.name.as_str()));
     m.insert("model".into(), Value::from(case.model));
     m.insert("t_end".into(), num(scene.t_end));
@@ -109,9 +106,9 @@ pub fn inputs_value(case: &Case, scene: &Scene) -> Value {
 /// Refuses a family whose physics map uses a key the hash adds itself (it would be
 /// overwritten, and two different physics would hash alike). Called for every scene of every
 /// case when the case is loaded, so a family, built in or a user's, cannot skip it.
-pub fn check_family_inputs(family: &crate::problem::Family, case: &Case) -> Result<(), CaseError> {
+pub fn check_family_inputs(case: &Case) -> Result<(), CaseError> {
     for scene in &case.scenes {
-        let m = (family.inputs)(case, scene);
+        let m = case.family.inputs(case, scene);
         if let Some(k) = RESERVED_INPUT_KEYS.iter().find(|k| m.contains_key(**k)) {
             return Err(CaseError {
                 file: case.file.clone(),
@@ -119,7 +116,7 @@ pub fn check_family_inputs(family: &crate::problem::Family, case: &Case) -> Resu
                 message: format!(
                     "family `{}` puts the reserved key `{k}` in its physics hash (scene `{}`); \
                      the hash adds {} itself: the family must name its keys otherwise",
-                    family.model,
+                    case.model,
                     scene.name,
                     RESERVED_INPUT_KEYS.join(", ")
                 ),

@@ -54,7 +54,7 @@ impl OrderClass {
 
 /// One point of a fixed-step ladder, resolved against its scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FixedStep {
+pub struct LadderStep {
     /// The step as written in the file (s); records and gates name the run by it.
     pub dt: f64,
     /// Steps per `score_every`: `round(score_every / dt)`.
@@ -68,9 +68,9 @@ pub struct FixedStep {
 /// A scene's effective ladders (the scene's override where given, else the case's).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Ladder {
-    pub order1: Vec<FixedStep>,
-    pub order2_4: Vec<FixedStep>,
-    pub order6: Vec<FixedStep>,
+    pub order1: Vec<LadderStep>,
+    pub order2_4: Vec<LadderStep>,
+    pub order6: Vec<LadderStep>,
     /// Adaptive tolerances, each in (0, 1).
     pub tol: Vec<f64>,
     /// The key path each class's list came from (`ladders.order1`,
@@ -81,7 +81,7 @@ pub struct Ladder {
 
 impl Ladder {
     /// The fixed steps of one class.
-    pub fn fixed(&self, class: OrderClass) -> &[FixedStep] {
+    pub fn fixed(&self, class: OrderClass) -> &[LadderStep] {
         match class {
             OrderClass::Order1 => &self.order1,
             OrderClass::Order2To4 => &self.order2_4,
@@ -91,13 +91,50 @@ impl Ladder {
 
     /// The step of one class that takes the most steps, with its key path
     /// (`ladders.order2_4[3]`); None for an empty class.
-    pub fn finest(&self, class: OrderClass) -> Option<(String, FixedStep)> {
+    pub fn finest(&self, class: OrderClass) -> Option<(String, LadderStep)> {
         let i = OrderClass::ALL.iter().position(|c| *c == class)?;
         self.fixed(class)
             .iter()
             .enumerate()
             .max_by_key(|(_, s)| s.steps)
             .map(|(j, s)| (format!("{}[{j}]", self.paths[i]), *s))
+    }
+}
+
+/// Step ladders per method order class, and tolerances for adaptive methods.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Ladders {
+    pub order1: Vec<f64>,
+    pub order2_4: Vec<f64>,
+    pub order6: Vec<f64>,
+    pub tol: Vec<f64>,
+}
+
+impl Ladders {
+    /// The ladder a method runs on.
+    pub fn for_method(&self, info: &crate::integrate::MethodInfo) -> &[f64] {
+        if info.adaptive {
+            &self.tol
+        } else if info.order <= 1 {
+            &self.order1
+        } else if info.order <= 4 {
+            &self.order2_4
+        } else {
+            &self.order6
+        }
+    }
+}
+
+impl Ladder {
+    /// The ladder's values: the nominal steps of each order class and the tolerances.
+    pub fn values(&self) -> Ladders {
+        let dts = |c: OrderClass| self.fixed(c).iter().map(|s| s.dt).collect::<Vec<_>>();
+        Ladders {
+            order1: dts(OrderClass::Order1),
+            order2_4: dts(OrderClass::Order2To4),
+            order6: dts(OrderClass::Order6),
+            tol: self.tol.clone(),
+        }
     }
 }
 
@@ -266,7 +303,7 @@ impl Ctx<'_> {
         Ok(out)
     }
 
-    fn fixed_step(&self, key: &str, dt: f64, span: &Span, max_steps: u64) -> Res<FixedStep> {
+    fn fixed_step(&self, key: &str, dt: f64, span: &Span, max_steps: u64) -> Res<LadderStep> {
         let Some(per_score) = steps_dividing(span.score_every, dt) else {
             return self.err(
                 key,
@@ -288,7 +325,7 @@ impl Ctx<'_> {
                 ),
             );
         }
-        Ok(FixedStep {
+        Ok(LadderStep {
             dt,
             per_score,
             steps,

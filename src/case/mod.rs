@@ -1,7 +1,8 @@
 //! Case files (`cases/*.toml`, cases/README.md "Case-file keys") to typed, validated structs: the
-//! part every model family shares, and the dispatch on `model = "..."` to the family that parses
-//! the whole file (`problem::Family::load`), so that unknown keys and key paths in errors work for
-//! every family.
+//! part every model family shares (the family's own part is parsed by the family, which the
+//! catalogue's loader, `catalogue::load_str`, picks by the file's `model` key), so that unknown
+//! keys and key paths in errors work for every family. `case` knows a family only through
+//! [`CaseFamily`], so it sits below the seam (`problem`) in the crate's layers.
 //!
 //! A file is read in two passes. First serde, with `deny_unknown_fields` everywhere, turns
 //! the TOML into the family's raw structs (declared with [`case_schema!`], which adds the
@@ -21,7 +22,7 @@
 //! # Example
 //!
 //! ```
-//! let cases = mbdbench::case::embedded().unwrap();
+//! let cases = mbdbench::catalogue::embedded().unwrap();
 //! let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
 //! assert_eq!(c.model, "rigid_body");
 //! let s = c.scene("two_angles").unwrap();
@@ -32,18 +33,19 @@
 //!     .find(|(label, _)| label.ends_with("nine_spring.toml"))
 //!     .unwrap();
 //! let text = source.1.replace("t_end = 10.0", "t_end = -1.0");
-//! let e = mbdbench::case::load_str("cases/nine_spring.toml", &text).unwrap_err();
+//! let e = mbdbench::catalogue::load_str("cases/nine_spring.toml", &text).unwrap_err();
 //! assert!(e.key.ends_with(".t_end"), "{e}");
 //! ```
 use std::any::Any;
 use std::fmt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
 pub mod budget;
 mod ctx;
 pub mod exact;
+mod family;
 pub mod gate;
 pub mod hash;
 mod keypath;
@@ -56,9 +58,12 @@ pub use budget::{
     OdeCosts, hard_cap, ode_estimate, over_sample_budget,
 };
 pub use ctx::{Ctx, Res};
+pub use family::CaseFamily;
 pub use gate::{Bound, Gate, GateWhere, RawGate};
 pub use hash::{canonical_json, inputs_sha256, inputs_value};
-pub use ladder::{DIVIDES_REL_TOL, FixedStep, Ladder, OrderClass, RawLadders, steps_dividing};
+pub use ladder::{
+    DIVIDES_REL_TOL, Ladder, LadderStep, Ladders, OrderClass, RawLadders, steps_dividing,
+};
 pub use schema::{RawGrid, RawShared, RawStability};
 
 /// The only schema version this loader reads.
@@ -217,8 +222,10 @@ pub struct Case {
     /// `case`: snake_case, equal to the file stem.
     pub name: String,
     pub title: String,
-    /// The family's `model` key (`problem::FAMILIES`).
+    /// The family's `model` key (`catalogue::FAMILIES`).
     pub model: &'static str,
+    /// The family that loaded it.
+    pub family: &'static dyn CaseFamily,
     /// One of the family's metrics.
     pub primary_metric: String,
     /// Relative energy drifts divide by `max(|E0|, energy_scale)` (the energy's unit).
@@ -298,7 +305,7 @@ impl Scene {
 
     /// The step of one order class that takes the most steps in either tier, with its key
     /// path (`ladders.quick.order1[0]`); None when neither tier has the class.
-    pub fn finest(&self, class: OrderClass) -> Option<(String, FixedStep)> {
+    pub fn finest(&self, class: OrderClass) -> Option<(String, LadderStep)> {
         [&self.ladders, &self.quick]
             .into_iter()
             .filter_map(|l| l.finest(class))
@@ -345,40 +352,14 @@ impl Case {
 // ---------------------------------------------------------------------------------------
 // Loading
 
-/// Loads one case from its text; `file_label` names it in errors (`cases/<name>.toml`). Every
-/// scene's estimate (`problem::Family::estimate`) is checked against the case's budgets
-/// (`budget::check`): a case whose run would pass one is refused here, before anything that
-/// grows with its numbers exists.
-pub fn load_str(file_label: &str, text: &str) -> Result<Case, CaseError> {
-    /// The one key read before the family's schema: which family parses the file.
+/// The one key read before the family's schema: which family parses the file (its `model`).
+pub fn model_key(file_label: &str, text: &str) -> Result<String, CaseError> {
     #[derive(Deserialize)]
     struct ModelKey {
         model: String,
     }
-    let m: ModelKey =
-        toml::from_str(text).map_err(|e| keypath::toml_error(file_label, text, &e))?;
-    let Some(family) = crate::problem::find_family(&m.model) else {
-        return Err(CaseError {
-            file: file_label.to_string(),
-            key: "model".into(),
-            message: format!(
-                "unknown model `{}`; expected one of {}",
-                m.model,
-                crate::problem::FAMILIES
-                    .iter()
-                    .map(|f| format!("`{}`", f.model))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        });
-    };
-    let mut case = (family.load)(file_label, text)?;
-    hash::check_family_inputs(family, &case)?;
-    hash::stamp_settings(&mut case, family.model, file_label, text)?;
-    for scene in &case.scenes {
-        budget::check(&case, scene, &(family.estimate)(&case, scene))?;
-    }
-    Ok(case)
+    let m: ModelKey = parse(file_label, text)?;
+    Ok(m.model)
 }
 
 /// Parses `text` into a family's raw (serde) case, errors with key paths.
@@ -386,9 +367,10 @@ pub fn parse<T: serde::de::DeserializeOwned>(file_label: &str, text: &str) -> Re
     toml::from_str(text).map_err(|e| keypath::toml_error(file_label, text, &e))
 }
 
-/// Loads every `*.toml` of `dir`, sorted by file name; each file's `case` must equal its stem.
-/// Each is read as a regular file of at most `read_limited::CASE` bytes.
-pub fn load_dir(dir: &Path) -> Result<Vec<Case>, CaseError> {
+/// The case files of `dir` as `(label, text)`: every `*.toml`, sorted by file name, each read
+/// as a regular file of at most `read_limited::CASE` bytes and as UTF-8 text. The family
+/// table's loader (`catalogue::load_dir`) parses them.
+pub fn read_dir(dir: &Path) -> Result<Vec<(PathBuf, String)>, CaseError> {
     let dir_label = dir.display().to_string();
     let io = |e: std::io::Error| CaseError {
         file: dir_label.clone(),
@@ -410,7 +392,7 @@ pub fn load_dir(dir: &Path) -> Result<Vec<Case>, CaseError> {
             message: "no *.toml case files here".into(),
         });
     }
-    let mut cases = Vec::with_capacity(paths.len());
+    let mut out = Vec::with_capacity(paths.len());
     for path in paths {
         let label = path.display().to_string();
         let bytes =
@@ -424,23 +406,48 @@ pub fn load_dir(dir: &Path) -> Result<Vec<Case>, CaseError> {
             key: String::new(),
             message: format!("cannot read: not UTF-8 text: {e}"),
         })?;
-        let case = load_str(&label, &text)?;
-        check_stem(&case, &path)?;
-        cases.push(case);
+        out.push((path, text));
     }
-    Ok(cases)
+    Ok(out)
 }
 
-/// The catalogue compiled into the binary (`cases/` of the source tree), sorted by name.
-pub fn embedded() -> Result<Vec<Case>, CaseError> {
-    EMBEDDED
-        .iter()
-        .map(|(label, text)| {
-            let case = load_str(label, text)?;
-            check_stem(&case, Path::new(label))?;
-            Ok(case)
-        })
-        .collect()
+/// The selected cases and scenes (empty filter lists select all), in file order. A name in
+/// a filter that matches nothing is an error.
+pub fn select<'c>(
+    cases: &'c [Case],
+    case_filter: &[String],
+    scene_filter: &[String],
+) -> Result<Vec<(&'c Case, &'c Scene)>, String> {
+    for c in case_filter {
+        if !cases.iter().any(|k| &k.name == c) {
+            return Err(format!(
+                "--case {c}: no such case (known: {})",
+                cases
+                    .iter()
+                    .map(|k| k.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+    }
+    let mut out = vec![];
+    for c in cases {
+        if !case_filter.is_empty() && !case_filter.contains(&c.name) {
+            continue;
+        }
+        for s in &c.scenes {
+            if !scene_filter.is_empty() && !scene_filter.contains(&s.name) {
+                continue;
+            }
+            out.push((c, s));
+        }
+    }
+    for s in scene_filter {
+        if !out.iter().any(|(_, sc)| &sc.name == s) {
+            return Err(format!("--scene {s}: no such scene in the selected cases"));
+        }
+    }
+    Ok(out)
 }
 
 /// `text` with every `[[gates]]` table removed (a gate table runs to the next table header):
@@ -467,7 +474,8 @@ pub fn embedded_sources() -> &'static [(&'static str, &'static str)] {
     &EMBEDDED
 }
 
-fn check_stem(case: &Case, path: &Path) -> Result<(), CaseError> {
+/// Refuses a case whose `case` key differs from its file's stem.
+pub fn check_stem(case: &Case, path: &Path) -> Result<(), CaseError> {
     let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
     if stem != case.name {
         return Err(CaseError {

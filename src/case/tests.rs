@@ -2,6 +2,7 @@
 //! every kind of bad input (named by file and key path), ladders and step counts, and the
 //! physics hash. The fixtures are the rigid-body catalogue files.
 use super::*;
+use crate::catalogue::{embedded, load_dir, load_str};
 use crate::math::so3;
 use crate::model::rigid_body::case::{AngularInit, RigidCase, RigidScene, initial, rigid_body};
 use nalgebra::Matrix3;
@@ -81,7 +82,7 @@ fn embedded_files_load() {
             c.name
         );
         // A family without adaptive methods (the fiber column) has no tolerance ladder.
-        let adaptive = (crate::problem::family_of(c).variants)()
+        let adaptive = (crate::catalogue::family_of(c).variants)()
             .iter()
             .any(|v| v.info.adaptive);
         for s in &c.scenes {

@@ -4,9 +4,9 @@ use super::*;
 
 pub(super) fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
     let cases = load_cases(common)?;
-    let problems = plan::problems(&cases, &[], &[])?;
+    let problems = crate::catalogue::problems(&cases, &[], &[])?;
     // The families the cases use, in family-table order.
-    let families: Vec<&'static Family> = problem::FAMILIES
+    let families: Vec<&'static Family> = crate::catalogue::FAMILIES
         .iter()
         .copied()
         .filter(|f| problems.iter().any(|p| std::ptr::eq(p.family(), *f)))

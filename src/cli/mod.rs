@@ -266,10 +266,10 @@ pub struct TrajectoryArgs {
 use std::collections::BTreeMap;
 
 use crate::case::{self, Case};
-use crate::plan;
 use crate::problem::{self, Entry, Family, Stepping, Want};
 use crate::reference;
-use crate::suite::{self, RunOptions, VariantFilter};
+use crate::selection::VariantFilter;
+use crate::suite::{self, RunOptions};
 
 /// Exit codes (docs/schemas.md, "Exit codes"): success, a run or check failed, bad input or usage.
 pub const EXIT_OK: i32 = 0;
@@ -286,8 +286,8 @@ pub fn default_references() -> PathBuf {
 
 fn load_cases(common: &Common) -> Result<Vec<Case>, String> {
     match &common.cases {
-        Some(dir) => case::load_dir(dir),
-        None => case::embedded(),
+        Some(dir) => crate::catalogue::load_dir(dir),
+        None => crate::catalogue::embedded(),
     }
     .map_err(|e| e.to_string())
 }
@@ -367,7 +367,7 @@ fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
     };
     names::check_variant_names(&filter)?;
     // Validates the case and scene names (an unknown one is bad input).
-    plan::select(&cases, &a.filters.case, &a.filters.scene)?;
+    crate::case::select(&cases, &a.filters.case, &a.filters.scene)?;
     crate::reference::check_writable(&a.out)?;
     let opts = crate::stability::StudyOptions {
         quick: a.quick,
@@ -383,10 +383,10 @@ fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
         if a.quick { ", quick tier" } else { "" }
     );
     let summary =
-        crate::stability::run_study(&cases, &a.filters.case, &a.filters.scene, &filter, &opts)?;
+        crate::study::run_study(&cases, &a.filters.case, &a.filters.scene, &filter, &opts)?;
     if a.verbose {
         let mut stdout = crate::quiet::Stdout;
-        crate::stability::print_table(&summary, &mut stdout).map_err(|e| e.to_string())?;
+        crate::study::print_table(&summary, &mut stdout).map_err(|e| e.to_string())?;
         crate::say!("");
     }
     crate::say!(
@@ -512,7 +512,7 @@ fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
     }
     let cases = load_cases(common)?;
     // Unknown case or scene names are bad input, with the known ones listed.
-    plan::select(&cases, &a.case, &a.scene)?;
+    crate::case::select(&cases, &a.case, &a.scene)?;
     for s in &a.scene {
         if !cases
             .iter()
@@ -580,7 +580,7 @@ fn physical_advice_for(
     summary: &crate::summary::Summary,
 ) -> crate::advise::Advice {
     let root = common.references.clone().unwrap_or_else(default_references);
-    let reference = |c: &Case, scene: &str| match crate::problem::family_of(c).figures.physical {
+    let reference = |c: &Case, scene: &str| match crate::catalogue::family_of(c).figures.physical {
         Some(view) => crate::advise::stored_reference(
             &root,
             c,
@@ -646,7 +646,7 @@ fn cmd_reference(
         return Err(format!("--case {case_name}: no such case"));
     }
     let scene_filter: Vec<String> = scene.map(|s| vec![s.to_string()]).unwrap_or_default();
-    let problems = plan::problems(&cases, &[case_name.to_string()], &scene_filter)?;
+    let problems = crate::catalogue::problems(&cases, &[case_name.to_string()], &scene_filter)?;
     let root = common.references.clone().unwrap_or_else(default_references);
     let mut all_ok = true;
     for p in &problems {

@@ -1,9 +1,10 @@
 //! The valid names of the command line's name options, per model family, from the family
-//! table (`problem::FAMILIES`) and the embedded case files: the help texts of `--case`,
+//! table (`catalogue::FAMILIES`) and the embedded case files: the help texts of `--case`,
 //! `--param`, `--integrator` and `--formulation` list them, and an unknown name is refused
 //! with the valid ones (a new family or integrator shows up here without an edit).
-use crate::problem::{FAMILIES, Family};
-use crate::suite::VariantFilter;
+use crate::catalogue::FAMILIES;
+use crate::problem::Family;
+use crate::selection::VariantFilter;
 
 /// The integrators a family registers, in its table order, without repeats.
 fn integrators_of(f: &Family) -> Vec<&'static str> {
@@ -66,7 +67,7 @@ pub fn formulation_help() -> String {
 
 /// The embedded catalogue's case names.
 fn case_names() -> Vec<String> {
-    crate::case::embedded()
+    crate::catalogue::embedded()
         .map(|cs| cs.into_iter().map(|c| c.name).collect())
         .unwrap_or_default()
 }
@@ -81,7 +82,7 @@ pub fn case_help() -> String {
 
 /// Help of `--scene`.
 pub fn scene_help() -> String {
-    let scenes: Vec<String> = crate::case::embedded()
+    let scenes: Vec<String> = crate::catalogue::embedded()
         .map(|cs| {
             cs.iter()
                 .map(|c| {
@@ -100,7 +101,7 @@ pub fn scene_help() -> String {
 /// Bad input when a variant filter names nothing any family registers: each unknown name
 /// with the valid names of its axis.
 pub fn check_variant_names(filter: &VariantFilter) -> Result<(), String> {
-    let bad = filter.unknown_names();
+    let bad = crate::catalogue::unknown_names(filter);
     if bad.is_empty() {
         return Ok(());
     }

@@ -107,7 +107,7 @@ pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf
     {
         return Err(format!("--t-end {t}: must be a positive number"));
     }
-    let problems = plan::problems(&cases, &a.filters.case, &a.filters.scene)?;
+    let problems = crate::catalogue::problems(&cases, &a.filters.case, &a.filters.scene)?;
     let filter = VariantFilter {
         param: a.filters.param.clone(),
         integrator: a.filters.integrator.clone(),

@@ -18,7 +18,7 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
             known.join(", ")
         ));
     }
-    let mut p = plan::problems(
+    let mut p = crate::catalogue::problems(
         &cases,
         std::slice::from_ref(&a.case),
         std::slice::from_ref(&a.scene),

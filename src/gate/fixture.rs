@@ -48,7 +48,7 @@ pub fn source(name: &str) -> &'static str {
 pub fn with_gates(name: &str, gates: &str) -> Case {
     let label = format!("cases/{name}.toml");
     let bare = case::without_gates(source(name));
-    case::load_str(&label, &format!("{bare}\n{gates}")).unwrap()
+    crate::catalogue::load_str(&label, &format!("{bare}\n{gates}")).unwrap()
 }
 
 /// `nine_spring` with `GATES`.

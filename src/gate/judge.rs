@@ -21,7 +21,7 @@ pub(super) fn check_label(c: &Check) -> String {
 /// seconds (`Figures::t_axis`), else the declared pseudo-time in words (a static scene's
 /// load factor, a cyclic scene's protocol increment), never seconds.
 pub(super) fn t_unit(c: &crate::case::Case, scene: &str) -> String {
-    let family = crate::problem::family_of(c);
+    let family = crate::catalogue::family_of(c);
     let label = c
         .scene(scene)
         .map_or(crate::problem::figures::seconds_label(), |s| {

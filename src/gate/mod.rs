@@ -114,13 +114,13 @@ pub const WORK_METRICS: &[&str] = &[
 
 /// The metric-name lists a gate may name besides the names found in the records and every
 /// model family's metrics (`problem::Family::metrics`); a new study is one more entry.
-pub const KNOWN_METRIC_LISTS: &[&[&str]] = &[WORK_METRICS, crate::stability::search::METRICS];
+pub const KNOWN_METRIC_LISTS: &[&[&str]] = &[WORK_METRICS, crate::stability::steps::METRICS];
 
 /// Whether a metric belongs to a variant as a whole (the stability search's largest steps),
 /// not to a ladder point: its gates expand over scenes x variants only, and match the
 /// records without `dt`/`tol`.
 pub fn per_variant(metric: &str) -> bool {
-    crate::stability::search::METRICS.contains(&metric)
+    crate::stability::steps::METRICS.contains(&metric)
 }
 
 /// Relative slack between a gate's bound and its `baseline x margin`.
@@ -568,7 +568,7 @@ pub fn evaluate(
         if gated.is_empty() {
             continue;
         }
-        let family = crate::problem::family_of(c);
+        let family = crate::catalogue::family_of(c);
         let problems = c
             .scenes
             .iter()

@@ -127,7 +127,7 @@ pub fn compare_baseline(
         .iter()
         .filter(|r| r.status != Status::NotApplicable)
         .collect();
-    now.sort_by_key(|r| r.report_order());
+    now.sort_by_key(|r| crate::catalogue::report_order(r));
     let mut claims: BTreeMap<(String, String), Result<Box<dyn Problem>, String>> = BTreeMap::new();
     let mut stale: BTreeMap<(String, String), usize> = BTreeMap::new();
     let mut renewed: BTreeMap<(String, String), usize> = BTreeMap::new();
@@ -268,7 +268,7 @@ fn error_metrics(cases: &[Case], case_name: &str) -> Vec<&'static str> {
         .iter()
         .find(|c| c.name == case_name)
         .map(|c| {
-            crate::problem::family_of(c)
+            crate::catalogue::family_of(c)
                 .metrics
                 .iter()
                 .filter(|m| m.reference_error)
@@ -293,7 +293,7 @@ fn load_reference(
     let s = c
         .scene(scene_name)
         .ok_or_else(|| format!("{}: no scene `{scene_name}`", c.file))?;
-    let mut p = (crate::problem::family_of(c).compile)(c, s).map_err(|e| e.to_string())?;
+    let mut p = (crate::catalogue::family_of(c).compile)(c, s).map_err(|e| e.to_string())?;
     p.attach_reference(root)?;
     Ok(p)
 }

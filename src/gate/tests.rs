@@ -27,7 +27,7 @@ fn rec_mut<'a>(s: &'a mut Summary, integrator: &str, dt: f64) -> &'a mut Record 
 /// record off them (a full-ladder point) or no ladder record at all makes it not quick.
 #[test]
 fn quick_summary_is_recognised() {
-    let cases: Vec<_> = case::embedded()
+    let cases: Vec<_> = crate::catalogue::embedded()
         .unwrap()
         .into_iter()
         .filter(|c| c.model == "rigid_body")

@@ -21,7 +21,7 @@ pub fn known_metrics(summary: &Summary, stability: Option<&Summary>) -> BTreeSet
         .map(|s| s.to_string())
         .collect();
     known.extend(
-        crate::problem::FAMILIES
+        crate::catalogue::FAMILIES
             .iter()
             .flat_map(|f| f.metrics.iter().map(|m| m.name.to_string())),
     );
@@ -85,7 +85,7 @@ pub(super) fn check_where_values(c: &Case, index: usize, g: &Gate) -> Result<(),
         key,
         message,
     };
-    let vs = (crate::problem::family_of(c).variants)();
+    let vs = (crate::catalogue::family_of(c).variants)();
     let names = |pick: fn(&Variant) -> &'static str| {
         let mut n: Vec<&str> = vs.iter().map(pick).collect();
         n.sort_unstable();

@@ -1,6 +1,10 @@
 //! Time integrators: the `System` a method advances, the typed failures and work counters a
 //! run reports, and the two method traits (fixed-step one-step methods, adaptive whole-span
-//! methods). One file per method family lives beside this one.
+//! methods). One file per method family lives beside this one: the methods generic over a kind
+//! of system. `integrate` imports no model family (docs/architecture.md): a method written for
+//! one family's equations lives in that family's folder (the rigid body's `splitting`, `lgvi`,
+//! `lie_gen_alpha`, `simo_wong` and compensated variants in `model/rigid_body/methods/`), and
+//! uses the shared pieces here (`lu6`, `newton_stop`, `implicit_rk`).
 //!
 //! A `System` separates the state (what is stored: a quaternion has 4 numbers) from its
 //! increment (`Tangent`: 3 numbers on SO(3)). `retract(x, dx)` is `x + dx` on additive charts
@@ -18,22 +22,14 @@ use serde::{Deserialize, Serialize};
 use crate::math::vector::Vector;
 
 pub mod adaptive_rk;
-mod body_momentum;
-pub mod compensated;
 pub mod crouch_grossman;
 pub mod explicit_rk;
 pub mod implicit_rk;
-pub mod lgvi;
-pub mod lie_gen_alpha;
 pub mod linalg;
 pub mod lu6;
-mod newton_stop;
-mod own_state;
+pub(crate) mod newton_stop;
 #[cfg(test)]
-mod rigid_test_support;
-pub mod simo_wong;
-pub mod simo_wong_kahan;
-pub mod splitting;
+pub(crate) mod rigid_test_support;
 pub mod tableau;
 #[cfg(test)]
 pub(crate) mod test_support;
@@ -219,6 +215,20 @@ impl std::ops::AddAssign for Stats {
     }
 }
 
+/// `max_steps` when a case does not set it.
+pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;
+
+/// `max_rhs_evals` (every run) when a case does not set it: a fixed-step run is bounded by
+/// `max_steps` before it starts, so this only stops a runaway Newton iteration count.
+pub const DEFAULT_MAX_RHS_EVALS: u64 = 2_000_000_000;
+
+/// `max_adaptive_rhs_evals` when a case does not set it: the RHS budget of an adaptive run,
+/// whose work is not known up front. The catalogue's costliest adaptive run takes 251,741
+/// (`gimbal_lock/spin_d1e-8`, `euler_zyx/dop853` at tol 1e-12); a run that diverges at a
+/// loose tolerance crawls on steps of 1e-7 s and would take 1e8 steps (`se3_hq/dopri5` at
+/// tol 0.5 on `nine_spring/two_angles`: 7.8e8 evaluations, 413 s).
+pub const DEFAULT_MAX_ADAPTIVE_RHS_EVALS: u64 = 1_000_000;
+
 /// Per-run budgets; exceeding one is a `work_limit` failure. An adaptive run's work is not
 /// known up front (a fixed-step run's is, and is checked against `max_steps` before it
 /// starts): `run::run_adaptive` bounds it by `max_adaptive_rhs_evals` too ([`Limits::adaptive`]),
@@ -228,16 +238,16 @@ impl std::ops::AddAssign for Stats {
 pub struct Limits {
     pub max_steps: u64,
     pub max_rhs_evals: u64,
-    /// The RHS budget of an adaptive run (default `case::DEFAULT_MAX_ADAPTIVE_RHS_EVALS`).
+    /// The RHS budget of an adaptive run (default [`DEFAULT_MAX_ADAPTIVE_RHS_EVALS`]).
     pub max_adaptive_rhs_evals: u64,
 }
 
 impl Default for Limits {
     fn default() -> Self {
         Limits {
-            max_steps: crate::case::DEFAULT_MAX_STEPS,
-            max_rhs_evals: crate::case::DEFAULT_MAX_RHS_EVALS,
-            max_adaptive_rhs_evals: crate::case::DEFAULT_MAX_ADAPTIVE_RHS_EVALS,
+            max_steps: DEFAULT_MAX_STEPS,
+            max_rhs_evals: DEFAULT_MAX_RHS_EVALS,
+            max_adaptive_rhs_evals: DEFAULT_MAX_ADAPTIVE_RHS_EVALS,
         }
     }
 }

@@ -70,7 +70,7 @@ mod tests {
     use crate::run::{RunOutput, Sample};
     use nalgebra::{UnitQuaternion, Vector3};
 
-    fn out(n: usize) -> RunOutput {
+    fn out(n: usize) -> RunOutput<Observation> {
         let o = Observation {
             q: UnitQuaternion::identity(),
             x: Vector3::zeros(),

@@ -1,6 +1,6 @@
 //! Physical models. Each model family is a folder here, plugged into the suite by one line of
 //! the `families!` list below, which declares its module and its entry in the family table
-//! (`problem::FAMILIES`, in report order); `linear_modes` and `torque_free` serve the rigid
+//! (`catalogue::FAMILIES`, in report order); `linear_modes` and `torque_free` serve the rigid
 //! body (its stability study and exact references).
 pub mod linear_modes;
 pub mod torque_free;

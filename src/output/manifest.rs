@@ -82,7 +82,7 @@ impl Manifest {
             FileEntry {
                 writer,
                 bytes: bytes.len() as u64,
-                sha256: crate::reference::sha256_hex(bytes),
+                sha256: crate::digest::sha256_hex(bytes),
             },
         );
     }
@@ -113,7 +113,7 @@ impl Manifest {
         let Some(e) = self.files.get(rel) else {
             return Ok(());
         };
-        if e.bytes == bytes.len() as u64 && e.sha256 == crate::reference::sha256_hex(bytes) {
+        if e.bytes == bytes.len() as u64 && e.sha256 == crate::digest::sha256_hex(bytes) {
             return Ok(());
         }
         Err(format!(

@@ -17,10 +17,10 @@
 //! ```
 //! use mbdbench::problem::{self, figures::Admit};
 //!
-//! let fig = problem::FAMILIES[0].figures;
+//! let fig = catalogue::FAMILIES[0].figures;
 //! // Every work-precision selection draws something of the family's variant table.
 //! for sel in fig.work_precision {
-//!     let drawn = problem::matrix::registered(problem::FAMILIES[0])
+//!     let drawn = problem::matrix::registered(catalogue::FAMILIES[0])
 //!         .filter(|v| sel.admit.admits(v.param, v.integrator, v.info.adaptive))
 //!         .count();
 //!     assert!(drawn > 0, "{}", sel.id);

@@ -8,7 +8,7 @@
 //! ```
 //! use mbdbench::problem::{self, Entry};
 //!
-//! let family = problem::FAMILIES[0];
+//! let family = catalogue::FAMILIES[0];
 //! let cells: Vec<_> = problem::matrix(family).collect();
 //! let n = family.axes.params.len() * family.axes.integrators.len() * family.axes.formulations.len();
 //! assert_eq!(cells.len(), n);

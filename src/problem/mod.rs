@@ -1,6 +1,7 @@
 //! The seam between the suite and the model families (README.md, "Adding things": a model
 //! family). A family (rigid bodies, later the flexible beam, the fiber column, mechanisms) is
-//! described once, statically, by a [`Family`] listed in [`FAMILIES`]: its case-file `model`
+//! described once, statically, by a [`Family`] listed in the catalogue's table
+//! (`catalogue::FAMILIES`, a module above this one): its case-file `model`
 //! key, the names and report order of the three record axes (`param`: how rotations are
 //! represented; `formulation`: how the equations of motion are written; `integrator`: how
 //! time or load is stepped), its metrics, its trajectory columns and its table of registered
@@ -17,9 +18,9 @@
 //! ```
 //! use mbdbench::problem::{self, Stepping, Want};
 //!
-//! let cases = mbdbench::case::embedded().unwrap();
+//! let cases = mbdbench::catalogue::embedded().unwrap();
 //! let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
-//! let family = problem::family_of(c);
+//! let family = mbdbench::catalogue::family_of(c);
 //! assert_eq!(family.model, "rigid_body");
 //! let mut p = (family.compile)(c, c.scene("two_angles").unwrap()).unwrap();
 //! p.attach_reference(&mbdbench::cli::default_references()).unwrap();
@@ -45,106 +46,12 @@ pub use crate::run::Stepping;
 pub use matrix::{Cell, Entry, matrix};
 pub use reference_variant::ReferenceVariant;
 
-/// The families, in report order. Adding a family is its folder under `src/model/` plus one
-/// line in `model::families!`.
-pub use crate::model::FAMILIES;
-
-/// The family a case belongs to (its `model` key, checked when the case was loaded).
-pub fn family_of(case: &Case) -> &'static Family {
-    find_family(case.model).unwrap_or(FAMILIES[0])
-}
-
-/// The family whose axes name the variant `(param, integrator, formulation)` (the report of a
-/// summary whose case file was not given); the first family when none does.
-pub fn family_of_variant(param: &str, integrator: &str, formulation: &str) -> &'static Family {
-    FAMILIES
-        .iter()
-        .copied()
-        .find(|f| {
-            f.axes.params.contains(&param)
-                && f.axes.integrators.contains(&integrator)
-                && f.axes.formulations.contains(&formulation)
-        })
-        .unwrap_or(FAMILIES[0])
-}
-
-/// The family of a case in a summary: its case file's when given, else the family naming the
-/// variant of its first record, else the first family.
-pub fn family_of_case<'a>(
-    case: Option<&Case>,
-    mut records: impl Iterator<Item = &'a crate::summary::Record>,
-) -> &'static Family {
-    match (case, records.next()) {
-        (Some(c), _) => family_of(c),
-        (None, Some(r)) => family_of_variant(&r.key.param, &r.key.integrator, &r.key.formulation),
-        (None, None) => FAMILIES[0],
-    }
-}
-
-/// The family with TOML `model` key `model`.
-pub fn find_family(model: &str) -> Option<&'static Family> {
-    FAMILIES.iter().copied().find(|f| f.model == model)
-}
-
 /// One of the three record axes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Axis {
     Param,
     Integrator,
     Formulation,
-}
-
-/// The names of one axis over every family: the families in table order, each in its own
-/// order, each name once. The report's colours, markers and orders follow it, so a family's
-/// names look the same in every plot and a name shared by two families looks the same in both.
-pub fn axis_names(axis: Axis) -> &'static [&'static str] {
-    use std::sync::OnceLock;
-    static NAMES: [OnceLock<Vec<&'static str>>; 3] =
-        [OnceLock::new(), OnceLock::new(), OnceLock::new()];
-    let (slot, pick): (usize, fn(&Axes) -> &'static [&'static str]) = match axis {
-        Axis::Param => (0, |a| a.params),
-        Axis::Integrator => (1, |a| a.integrators),
-        Axis::Formulation => (2, |a| a.formulations),
-    };
-    NAMES[slot].get_or_init(|| {
-        let mut out: Vec<&'static str> = vec![];
-        for f in FAMILIES {
-            for n in pick(&f.axes) {
-                if !out.contains(n) {
-                    out.push(n);
-                }
-            }
-        }
-        out
-    })
-}
-
-/// The facts of an integrator by name: those of its first registered variant in the family
-/// table (its kind and twin do not depend on the chart it runs on); None for a name no family
-/// registers.
-pub fn integrator_info(integrator: &str) -> Option<MethodInfo> {
-    FAMILIES
-        .iter()
-        .flat_map(|f| (f.variants)().iter())
-        .find(|v| v.integrator == integrator)
-        .map(|v| v.info)
-}
-
-/// The place of `name` in [`axis_names`] (`usize::MAX` for a name no family has).
-pub fn axis_position(axis: Axis, name: &str) -> usize {
-    axis_names(axis)
-        .iter()
-        .position(|x| *x == name)
-        .unwrap_or(usize::MAX)
-}
-
-/// A variant's place in the families' axis order: (param, integrator, formulation).
-pub fn variant_order(param: &str, integrator: &str, formulation: &str) -> [usize; 3] {
-    [
-        axis_position(Axis::Param, param),
-        axis_position(Axis::Integrator, integrator),
-        axis_position(Axis::Formulation, formulation),
-    ]
 }
 
 /// The names of the three record axes of a family, each in report order (colours and
@@ -215,7 +122,7 @@ pub struct Family {
     pub variants: fn() -> &'static [Variant],
     /// Why a combination of axis names absent from the table is `n/a`.
     pub static_na_reason: fn(&str, &str, &str) -> String,
-    /// Parses and validates a whole case file of this family (`case::load_str` dispatches
+    /// Parses and validates a whole case file of this family (`catalogue::load_str` dispatches
     /// on its `model` key): `(file label, text)`.
     pub load: fn(&str, &str) -> Result<Case, CaseError>,
     /// The family's physics of a scene in the physics hash (`case::hash`): every key that
@@ -232,7 +139,7 @@ pub struct Family {
     /// `case/hash_tests.rs` holds every family to this for every key of its case files.
     pub settings: &'static [&'static str],
     /// What one run of a scene needs (memory, steps, work), estimated from the loaded case's
-    /// numbers before anything that grows with them exists: `case::load_str` checks it
+    /// numbers before anything that grows with them exists: `catalogue::load_str` checks it
     /// against the case's budgets for every scene and refuses the case above one, naming
     /// the key (cases/README.md, "Budgets"). Required, so no family skips it; for it to come before
     /// any large allocation, a family's `load` keeps only what the file says (a count, not
@@ -243,9 +150,12 @@ pub struct Family {
     /// The family's figures in the report.
     pub figures: &'static figures::Figures,
     /// The integrators the quick tier of the seam's step search covers
-    /// (`stability::seam_search`; the full tier searches every fixed-step integrator). A
+    /// (`study::seam_search`; the full tier searches every fixed-step integrator). A
     /// family with a study of its own (the rigid body) leaves it empty.
     pub stability_quick: &'static [&'static str],
+    /// The family's own stability study (the rigid body's), run on its cases instead of the
+    /// seam's step search; None: the seam's search (`study::seam_search`).
+    pub study: Option<crate::stability::Study>,
     /// The reference kinds its problems can attach (`reference` in a case file); a case
     /// naming another is refused at load, by that key.
     pub references: &'static [crate::case::ReferenceKind],
@@ -283,6 +193,29 @@ impl Family {
     /// Whether `name` is a metric of this family.
     pub fn has_metric(&self, name: &str) -> bool {
         self.metrics.iter().any(|m| m.name == name)
+    }
+}
+
+/// The case loader's view of a family (`case::CaseFamily`): a loaded case keeps its family
+/// through it.
+impl crate::case::CaseFamily for Family {
+    fn model(&self) -> &'static str {
+        self.model
+    }
+    fn metric_names(&self) -> Vec<&'static str> {
+        self.metrics.iter().map(|m| m.name).collect()
+    }
+    fn formulations(&self) -> &'static [&'static str] {
+        self.axes.formulations
+    }
+    fn references(&self) -> &'static [crate::case::ReferenceKind] {
+        self.references
+    }
+    fn inputs(&self, case: &Case, scene: &Scene) -> serde_json::Map<String, serde_json::Value> {
+        (self.inputs)(case, scene)
+    }
+    fn estimate(&self, case: &Case, scene: &Scene) -> crate::case::Estimate {
+        (self.estimate)(case, scene)
     }
 }
 
@@ -369,9 +302,9 @@ pub trait Problem: Send + Sync {
         None
     }
     /// The period (s) of the scene's first (slowest) elastic mode: the time scale of the
-    /// seam's step search (`stability::seam_search`), whose horizon is a number of these
+    /// seam's step search (`study::seam_search`), whose horizon is a number of these
     /// periods. None for a family with a study of its own (the rigid body's linearised modes,
-    /// `stability::search`) or a scene without such a mode.
+    /// `model::rigid_body::stability::search`) or a scene without such a mode.
     fn first_period(&self) -> Option<f64> {
         None
     }
@@ -379,7 +312,7 @@ pub trait Problem: Send + Sync {
     /// the whole path one sample and score interval, so that every load step dividing `t_end`
     /// runs (errors against references are then absent), and returns true. The seam's step
     /// search then finds the scene's largest converging load step, up to the whole path in
-    /// one step (`stability::seam_search`). Scenes stepped in time return false, unchanged.
+    /// one step (`study::seam_search`). Scenes stepped in time return false, unchanged.
     fn as_load_path(&mut self) -> bool {
         false
     }

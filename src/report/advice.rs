@@ -1,7 +1,7 @@
 //! The recommendation at the top of the report (`crate::advise`): the page's first screen.
 //!
 //! On the page (`html`): a table of contents linking every case's section, grouped by family
-//! in the family table's order (`problem::FAMILIES`, rigid bodies first), then one compact
+//! in the family table's order (`catalogue::FAMILIES`, rigid bodies first), then one compact
 //! block per case in the same order (`data-rec=<case>`): per offered target, the winner with
 //! its step or tolerance per scene, its work and wall time, the runner-up with the cost ratio
 //! (or "none" / "not offered" and why), then what to avoid, grouped by reason. Where the
@@ -36,7 +36,7 @@ pub fn physical_specs(
         let Some(case) = cases.iter().find(|c| c.name == spec.case) else {
             return false;
         };
-        let family = crate::problem::family_of(case);
+        let family = crate::catalogue::family_of(case);
         let Some(view) = family.figures.physical else {
             return false;
         };
@@ -357,7 +357,7 @@ pub fn html(a: &Advice, physical: Option<&Advice>, order: &[(String, &str)]) -> 
 /// The physical view's sentence of a case's family (found by the family name in `order`).
 fn physical_what(case: &str, order: &[(String, &str)]) -> Option<&'static str> {
     let model = order.iter().find(|(n, _)| n == case)?.1;
-    crate::problem::FAMILIES
+    crate::catalogue::FAMILIES
         .iter()
         .find(|f| f.model == model)?
         .figures

@@ -39,7 +39,8 @@ use std::ops::Range;
 use super::axes::AxisSpec;
 use super::data::VariantKey;
 use super::style::{self, INK, Marker};
-use crate::problem::{Axis, axis_position};
+use crate::catalogue::axis_position;
+use crate::problem::Axis;
 
 /// Total width of every plot (px).
 pub const WIDTH: u32 = 900;

@@ -2,7 +2,7 @@
 //! ladder sorted coarse to fine (largest step or loosest tolerance first), with its order fit,
 //! plus the per-run series files found on disk.
 //!
-//! Invariants: variants appear in the families' axis order (`problem::axis_names`;
+//! Invariants: variants appear in the families' axis order (`catalogue::axis_names`;
 //! names no family has sort after, alphabetically); scenes in the case file's order
 //! (unknown scenes after, alphabetically); cases in the order of the `cases` slice, then cases
 //! absent from it. A variant's runs are either all fixed-step (`dt`) or all adaptive (`tol`).
@@ -11,7 +11,8 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use crate::case::Case;
-use crate::problem::{self, Axis, Family, axis_position};
+use crate::catalogue::axis_position;
+use crate::problem::{Axis, Family};
 use crate::summary::{FitRecord, Record, RunKey, Series, Status, Summary, run_id};
 
 /// A variant: parameterization x integrator x formulation.
@@ -43,7 +44,7 @@ impl VariantKey {
     /// Whether the parameterization belongs to its family's contrasted chart group (the rigid
     /// body's Euler-angle charts; `problem::figures::ChartGroup`).
     pub fn in_chart_group(&self) -> bool {
-        problem::family_of_variant(&self.param, &self.integrator, &self.formulation)
+        crate::catalogue::family_of_variant(&self.param, &self.integrator, &self.formulation)
             .figures
             .chart_group
             .is_some_and(|g| g.contains(&self.param))
@@ -285,8 +286,8 @@ impl<'a> CaseView<'a> {
         }
         let family = self
             .case
-            .map(crate::problem::family_of)
-            .unwrap_or(crate::problem::FAMILIES[0]);
+            .map(crate::catalogue::family_of)
+            .unwrap_or(crate::catalogue::FAMILIES[0]);
         let known: Vec<&str> = family.metrics.iter().map(|m| m.name).collect();
         let mut out: Vec<String> = vec![];
         if set.contains(self.primary.as_str()) {
@@ -354,7 +355,8 @@ pub fn case_views<'a>(summary: &'a Summary, cases: &'a [Case]) -> Vec<CaseView<'
                 .into_iter()
                 .map(|scene| scene_view(name, scene, &scenes_map[scene], &fits))
                 .collect();
-            let family = problem::family_of_case(case, scenes_map.values().flatten().copied());
+            let family =
+                crate::catalogue::family_of_case(case, scenes_map.values().flatten().copied());
             let primary = case
                 .map(|c| c.primary_metric.clone())
                 .or_else(|| {

@@ -131,7 +131,7 @@ impl Explained {
     /// The family's "How to read" block (a `<details>`, `data-section="howto"`): its key,
     /// then per kind of plot the sentences its captions share.
     pub fn block(&self, family: &str) -> String {
-        let key = crate::problem::FAMILIES
+        let key = crate::catalogue::FAMILIES
             .iter()
             .find(|f| f.model == family)
             .map_or("", |f| f.figures.key_text);

@@ -62,13 +62,13 @@ pub use html::render_check;
 /// How to read the plots (page and markdown header): the key of each family on the page, in
 /// family-table order (the first family's when the page has no case).
 fn key_text(views: &[data::CaseView]) -> String {
-    let present: Vec<&str> = crate::problem::FAMILIES
+    let present: Vec<&str> = crate::catalogue::FAMILIES
         .iter()
         .filter(|f| views.iter().any(|v| std::ptr::eq(v.family, **f)))
         .map(|f| f.figures.key_text)
         .collect();
     if present.is_empty() {
-        crate::problem::FAMILIES[0].figures.key_text.to_string()
+        crate::catalogue::FAMILIES[0].figures.key_text.to_string()
     } else {
         present.join(" ")
     }
@@ -307,7 +307,7 @@ fn build_page_with(
                 continue;
             }
             let case = cases.iter().find(|c| c.name == name);
-            let family = crate::problem::family_of_case(
+            let family = crate::catalogue::family_of_case(
                 case,
                 src.summary.records.iter().filter(|r| r.key.case == name),
             );
@@ -326,7 +326,7 @@ fn build_page_with(
     }
     // Families in the family table's order (rigid bodies first), then the case files' order.
     views.sort_by_key(|v| {
-        crate::problem::FAMILIES
+        crate::catalogue::FAMILIES
             .iter()
             .position(|f| std::ptr::eq(*f, v.family))
             .unwrap_or(usize::MAX)
@@ -407,7 +407,7 @@ pub(super) fn safe(component: &str) -> String {
     if s.len() <= MAX_COMPONENT {
         return s;
     }
-    let hash = crate::reference::sha256_hex(component.as_bytes());
+    let hash = crate::digest::sha256_hex(component.as_bytes());
     format!("{}-{}", &s[..64], &hash[..16])
 }
 

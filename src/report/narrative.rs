@@ -21,7 +21,8 @@ use std::collections::BTreeMap;
 
 use super::data::{CaseView, SceneView, VariantKey, num, step_label};
 use super::tables::kind_name;
-use crate::problem::{Axis, axis_names};
+use crate::catalogue::axis_names;
+use crate::problem::Axis;
 use crate::summary::{Record, Status};
 
 /// The accuracy a "cheapest" run must reach (primary metric, its own units).

@@ -24,12 +24,12 @@ pub trait Admits {
 
 /// Whether an integrator is a long-horizon twin of another (left out of every selection).
 pub fn is_twin(integrator: &str) -> bool {
-    crate::problem::integrator_info(integrator).is_some_and(|i| i.twin_of.is_some())
+    crate::catalogue::integrator_info(integrator).is_some_and(|i| i.twin_of.is_some())
 }
 
 /// The kind of an integrator (explicit for a name no family registers).
 pub fn kind_of(integrator: &str) -> MethodKind {
-    crate::problem::integrator_info(integrator).map_or(MethodKind::Explicit, |i| i.kind)
+    crate::catalogue::integrator_info(integrator).map_or(MethodKind::Explicit, |i| i.kind)
 }
 
 impl Admits for Selection {
@@ -257,7 +257,8 @@ pub fn split_crowded(p: super::chart::Plot) -> Vec<super::chart::Plot> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::problem::{FAMILIES, matrix::registered};
+    use crate::catalogue::FAMILIES;
+    use crate::problem::matrix::registered;
 
     /// Every declared selection's panels hold at most `MAX_LINES` registered variants each
     /// (every scene draws a subset of them), and together they hold each variant the selection
@@ -320,7 +321,7 @@ mod tests {
             label: None,
             marker_every: 1,
         };
-        let params = crate::problem::axis_names(crate::problem::Axis::Param);
+        let params = crate::catalogue::axis_names(crate::problem::Axis::Param);
         let mut lines: Vec<Line> = params.iter().map(|p| line(p, "rk4")).collect();
         lines.push(line("so3", "lgvi"));
         let p = Plot {

@@ -10,7 +10,7 @@
 //! the SO(3) group chart (filled), circles for quaternions and squares for matrices (hollow:
 //! additive, no projection; filled: projected after each step), a cross and a plus for the
 //! two SE(3) charts (the rigid family's chart order). Colours follow the integrator order of
-//! `problem::axis_names` (every family's integrators in table order; a categorical palette
+//! `catalogue::axis_names` (every family's integrators in table order; a categorical palette
 //! chosen for contrast on white), markers its parameterization order. A name past the palette
 //! gets a colour from a hash of its name: stable, but possibly shared.
 //!
@@ -22,7 +22,8 @@
 //! green (their light tints of the base colours were 13 to 19 apart from them).
 use plotters::style::RGBColor;
 
-use crate::problem::{Axis, axis_position};
+use crate::catalogue::axis_position;
+use crate::problem::Axis;
 
 /// The integrator colours, in `axis_names(Axis::Integrator)` order.
 const INTEGRATOR_COLOURS: [RGBColor; 25] = [
@@ -144,7 +145,7 @@ pub fn glyph(m: Marker) -> char {
 /// family's axis is, the first (third, ...) and unknown ones are solid (the rigid body:
 /// `body` solid, `spatial` dashed).
 pub fn dashed(formulation: &str) -> bool {
-    crate::problem::FAMILIES
+    crate::catalogue::FAMILIES
         .iter()
         .find_map(|f| f.axes.formulations.iter().position(|x| *x == formulation))
         .is_some_and(|i| i % 2 == 1)
@@ -224,14 +225,15 @@ pub const INK: RGBColor = RGBColor(60, 60, 60);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::problem::axis_names;
+    use crate::catalogue::axis_names;
 
     /// The pairs of integrators that can share a panel: those admitted together by a panel
     /// of a family's selections, every two of one kind (the long-horizon and crowded
     /// stability plots are split by kind, twins included), and the quick stability study's
     /// integrators (drawn together in its ladder plots).
     fn panel_pairs() -> Vec<(&'static str, &'static str)> {
-        use crate::problem::{FAMILIES, matrix::registered};
+        use crate::catalogue::FAMILIES;
+        use crate::problem::matrix::registered;
         use crate::report::select::{is_twin, kind_of, panels};
         let mut sets: Vec<Vec<&'static str>> = vec![];
         for family in FAMILIES {
@@ -266,7 +268,7 @@ mod tests {
                     .collect(),
             );
         }
-        sets.push(crate::stability::QUICK_INTEGRATORS.to_vec());
+        sets.push(crate::model::rigid_body::stability::QUICK_INTEGRATORS.to_vec());
         let mut pairs = vec![];
         for set in sets {
             for (i, a) in set.iter().enumerate() {

@@ -28,7 +28,7 @@ fn page_is_self_contained_and_complete() {
     let s = fixture::summary();
     let dir = fixture::temp_dir("complete");
     fixture::write_series(&dir.join("series"), &s, |_| false);
-    let cases = crate::case::embedded().unwrap();
+    let cases = crate::catalogue::embedded().unwrap();
     let out = dir.join("report");
     let extras = Extras {
         svg_files: true,
@@ -421,10 +421,10 @@ fn svg_files_only_on_request() {
 /// seconds; an RMS metric is not captioned as a max.
 #[test]
 fn stepped_parameter_and_aggregate_labels() {
-    let cases = crate::case::embedded().unwrap();
+    let cases = crate::catalogue::embedded().unwrap();
     let mut seen = std::collections::BTreeMap::new();
     for c in &cases {
-        let f = crate::problem::family_of(c);
+        let f = crate::catalogue::family_of(c);
         for s in &c.scenes {
             let (t, step) = (f.figures.t_axis)(s);
             seen.insert((c.name.clone(), s.name.clone()), (t, step));
@@ -463,7 +463,7 @@ fn stepped_parameter_and_aggregate_labels() {
 #[test]
 fn case_parts_are_folded() {
     let s = fixture::summary();
-    let cases = crate::case::embedded().unwrap();
+    let cases = crate::catalogue::embedded().unwrap();
     let page = build_page(&s, std::path::Path::new("/nonexistent"), &cases, None, None);
     let html = html::render(&page);
     let sec = case_html(&html, fixture::CASE);

@@ -4,11 +4,10 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-use mbdbench::case;
 use mbdbench::cli::default_references;
 use mbdbench::model::rigid_body::plan::{self as rigid_plan, ScenePlan};
-use mbdbench::plan;
-use mbdbench::suite::{self, RunOptions, VariantFilter};
+use mbdbench::selection::VariantFilter;
+use mbdbench::suite::{self, RunOptions};
 use mbdbench::summary::{Record, Summary};
 
 /// A process's standard output and error, in that order (for assertion messages).
@@ -76,16 +75,16 @@ pub fn replace_once(text: &str, old: &str, new: &str) -> String {
 
 /// The plans of one case (all its scenes, or the named ones).
 pub fn plans(case_name: &str, scenes: &[&str]) -> Vec<ScenePlan> {
-    let cases = case::embedded().unwrap();
+    let cases = mbdbench::catalogue::embedded().unwrap();
     let scenes: Vec<String> = scenes.iter().map(|s| s.to_string()).collect();
     rigid_plan::plans(&cases, &[case_name.to_string()], &scenes).unwrap()
 }
 
 /// The compiled problems of one case (all its scenes, or the named ones).
 pub fn problems(case_name: &str, scenes: &[&str]) -> Vec<Box<dyn mbdbench::problem::Problem>> {
-    let cases = case::embedded().unwrap();
+    let cases = mbdbench::catalogue::embedded().unwrap();
     let scenes: Vec<String> = scenes.iter().map(|s| s.to_string()).collect();
-    plan::problems(&cases, &[case_name.to_string()], &scenes).unwrap()
+    mbdbench::catalogue::problems(&cases, &[case_name.to_string()], &scenes).unwrap()
 }
 
 /// Runs the selected scenes and variants with the full ladders (or the quick tier).

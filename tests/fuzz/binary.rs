@@ -50,7 +50,7 @@ proptest! {
     #![proptest_config(config(32))]
 
     /// `mbdbench run` on a mutated case file exits 2 naming the file and the key and writes
-    /// nothing when the file is bad (as `case::load_dir` reports it); otherwise it runs (or
+    /// nothing when the file is bad (as `catalogue::load_dir` reports it); otherwise it runs (or
     /// refuses a stale reference, exit 2, writing nothing) and leaves only complete files.
     #[test]
     fn binary_bad_case_file_exits_2_and_writes_nothing(
@@ -67,7 +67,7 @@ proptest! {
         let dir = fresh_dir("fuzz-bin");
         std::fs::write(dir.join(file), &t).unwrap();
         let out = dir.join("out");
-        let expected = case::load_dir(&dir);
+        let expected = mbdbench::catalogue::load_dir(&dir);
         let o = run_bin(&[
             "run", "--quick", "--cases", dir.to_str().unwrap(), "--out", out.to_str().unwrap(),
             "--case", stem, "--param", "so3", "--integrator", "rk4", "--integrator", "dopri5",

@@ -716,7 +716,7 @@ fn base(dir: &Path) -> Base {
     for p in files {
         let file = p.file_name().unwrap().to_str().unwrap().to_string();
         let text = std::fs::read_to_string(&p).unwrap();
-        let c = mbdbench::case::load_str(&file, &text).unwrap();
+        let c = mbdbench::catalogue::load_str(&file, &text).unwrap();
         let scenes = c.scenes.iter().map(|x| (x.name.clone(), x.t_end)).collect();
         cases.push(BaseCase {
             file,

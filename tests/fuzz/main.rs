@@ -5,7 +5,7 @@
 //! Four layers, a file each:
 //! - `parser.rs`: the real case files, mutated (lines deleted, duplicated, swapped; keys
 //!   renamed; values retyped; numbers replaced by extremes; huge and deeply nested arrays;
-//!   junk; truncation; the mutations themselves are `mutate.rs`), fed to `case::load_str`;
+//!   junk; truncation; the mutations themselves are `mutate.rs`), fed to `catalogue::load_str`;
 //! - `run_loop.rs`: generated, valid-looking cases with random physics (tiny and huge masses,
 //!   near-singular inertias, random springs and initial states, tiny and huge horizons, fine
 //!   sample grids) and small work limits, planned and run with random registered variants at

@@ -1,4 +1,4 @@
-//! The parser layer: the real case files, mutated (`mutate.rs`), fed to `case::load_str`.
+//! The parser layer: the real case files, mutated (`mutate.rs`), fed to `catalogue::load_str`.
 //! Checks that loading never panics and gives either a case that satisfies the invariants
 //! after loading (finite states, symmetric inertia, sane ladders and grids) or an error that
 //! names the file and the key (or the line of a syntax error).
@@ -110,7 +110,7 @@ proptest! {
         for m in &muts {
             t = apply(&t, m);
         }
-        match case::load_str(label, &t) {
+        match mbdbench::catalogue::load_str(label, &t) {
             Ok(c) => check_case(&c),
             Err(e) => check_error(label, &e),
         }

@@ -6,14 +6,14 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use mbdbench::case;
 use mbdbench::integrate::{FailureKind, Limits};
+use mbdbench::model::rigid_body::Observation;
 use mbdbench::model::rigid_body::plan as rigid_plan;
-use mbdbench::model::rigid_body::registry::{self, Setup};
+use mbdbench::model::rigid_body::registry::{self, RigidSetup};
 use mbdbench::model::rigid_body::score::{self, ScoreContext};
-use mbdbench::plan;
 use mbdbench::run::{Observe, RunOutput};
-use mbdbench::suite::{self, RunOptions, VariantFilter};
+use mbdbench::selection::VariantFilter;
+use mbdbench::suite::{self, RunOptions};
 use proptest::prelude::*;
 use proptest::sample::Index;
 
@@ -22,7 +22,7 @@ use crate::parser::{check_case, check_error};
 use crate::{RUN_DEADLINE, common, config, temp_files};
 
 /// A run's output respects its limits and its grid.
-fn check_output(out: &RunOutput, setup: &Setup, adaptive: bool, what: &str) {
+fn check_output(out: &RunOutput<Observation>, setup: &RigidSetup, adaptive: bool, what: &str) {
     let l = &setup.limits;
     assert!(
         out.stats.steps <= l.max_steps.saturating_add(1),
@@ -65,7 +65,7 @@ fn check_output(out: &RunOutput, setup: &Setup, adaptive: bool, what: &str) {
 }
 
 /// Everything of a run that must be bit-identical across repeats.
-fn fingerprint(out: &RunOutput) -> String {
+fn fingerprint(out: &RunOutput<Observation>) -> String {
     format!(
         "{:?} {:?} {} {:?}",
         out.stats,
@@ -473,7 +473,7 @@ fn pick() -> impl Strategy<Value = Pick> {
 /// for bit, and scores it (no reference).
 fn run_checked(
     v: &registry::Variant,
-    setup: &Setup,
+    setup: &RigidSetup,
     value: f64,
     energy_scale: f64,
     primary: &str,
@@ -519,7 +519,7 @@ proptest! {
     ) {
         let text = p.toml();
         let label = "cases/fuzz.toml";
-        let c = match case::load_str(label, &text) {
+        let c = match mbdbench::catalogue::load_str(label, &text) {
             Ok(c) => c,
             Err(e) => {
                 check_error(label, &e);
@@ -572,7 +572,7 @@ proptest! {
         quick in any::<bool>(),
         jobs in 1usize..=2,
     ) {
-        let Ok(c) = case::load_str("cases/fuzz.toml", &p.toml()) else { return Ok(()) };
+        let Ok(c) = mbdbench::catalogue::load_str("cases/fuzz.toml", &p.toml()) else { return Ok(()) };
         let Ok(plans) = rigid_plan::plans(std::slice::from_ref(&c), &[], &[]) else { return Ok(()) };
         let out = common::temp_dir("fuzz-suite");
         let opts = RunOptions {
@@ -600,7 +600,7 @@ proptest! {
         {
             return Ok(());
         }
-        let Ok(problems) = plan::problems(std::slice::from_ref(&c), &[], &[]) else { return Ok(()) };
+        let Ok(problems) = mbdbench::catalogue::problems(std::slice::from_ref(&c), &[], &[]) else { return Ok(()) };
         let s = timed("suite", || suite::run_catalogue(problems, &filter, &opts))
             .map_err(TestCaseError::fail)?;
         let text = std::fs::read_to_string(out.join("summary.json")).unwrap();

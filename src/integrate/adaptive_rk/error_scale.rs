@@ -23,8 +23,6 @@ use super::AdaptiveRk;
 use crate::integrate::System;
 use crate::integrate::explicit_rk::combine;
 use crate::math::vector::Vector;
-use crate::model::rigid_body::RigidSystem;
-use crate::rotation::{Formulation, PoseChart};
 
 /// The componentwise size of a state for the error norm, expressed on the tangent.
 pub trait ErrorScale: System {
@@ -34,15 +32,6 @@ pub trait ErrorScale: System {
     fn coords(&self, x: &Self::State) -> Self::Tangent {
         let _ = x;
         Self::Tangent::zero()
-    }
-}
-
-/// The rigid body: the pose (attitude and position, both without a natural origin) is scaled
-/// by the step's own increment, the velocities by their values.
-impl<C: PoseChart, F: Formulation> ErrorScale for RigidSystem<C, F> {
-    #[inline(always)]
-    fn coords(&self, x: &Self::State) -> Self::Tangent {
-        (C::Tangent::zero(), x.vel)
     }
 }
 

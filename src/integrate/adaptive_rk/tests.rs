@@ -158,7 +158,7 @@ fn blowup_gives_underflow() {
 /// spinning body at tol 1e-73 crawled on ~1e-20 s steps towards its work limit).
 #[test]
 fn tolerance_below_round_off_is_refused() {
-    let cases = crate::case::embedded().unwrap();
+    let cases = crate::catalogue::embedded().unwrap();
     let c = cases.iter().find(|c| c.name == "gimbal_lock").unwrap();
     let p = crate::model::rigid_body::plan::scene_plan(c, c.scene("spin_d1e-2").unwrap()).unwrap();
     for integrator in ["dopri5", "dop853"] {

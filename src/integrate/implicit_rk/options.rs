@@ -4,7 +4,7 @@
 //! relative to the stage increments with a chosen factor) and when its Jacobian is recomputed.
 //! Each field says its default and why, with the measurements behind it; the defaults are
 //! those of every method in the catalogue except the compensated variants
-//! (`compensated.rs`), which ask for the relative test at `1 eps`.
+//! (`model/rigid_body/methods/compensated.rs`), which ask for the relative test at `1 eps`.
 //!
 //! Where it fails: the options are not validated (`max_iters = 0`, for one, makes every Newton
 //! solve a `newton_failure`).

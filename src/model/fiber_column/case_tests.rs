@@ -2,7 +2,8 @@
 //! refused with an error naming the file and the key, or ends a run in a typed failure.
 use crate::case::{self, CaseError};
 use crate::integrate::FailureKind;
-use crate::problem::{Stepping, Want, family_of};
+use crate::catalogue::family_of;
+use crate::problem::{Stepping, Want};
 
 fn source(name: &str) -> String {
     let label = format!("cases/{name}.toml");
@@ -17,7 +18,7 @@ fn source(name: &str) -> String {
 fn edited(name: &str, old: &str, new: &str) -> Result<case::Case, CaseError> {
     let text = source(name);
     assert!(text.contains(old), "{old} not in {name}");
-    case::load_str(&format!("cases/{name}.toml"), &text.replacen(old, new, 1))
+    crate::catalogue::load_str(&format!("cases/{name}.toml"), &text.replacen(old, new, 1))
 }
 
 fn refused(name: &str, old: &str, new: &str) -> CaseError {
@@ -39,7 +40,7 @@ fn catalogue_files_load() {
             .iter()
             .find(|(l, _)| *l == format!("cases/{name}.toml"))
             .unwrap_or_else(|| panic!("{name} is not in the catalogue"));
-        let c = case::load_str(label, text).unwrap_or_else(|e| panic!("{e}"));
+        let c = crate::catalogue::load_str(label, text).unwrap_or_else(|e| panic!("{e}"));
         for s in &c.scenes {
             (family_of(&c).compile)(&c, s).unwrap_or_else(|e| panic!("{e}"));
         }
@@ -77,7 +78,7 @@ fn bad_layouts_are_refused() {
     let mut empty = text.clone();
     empty.replace_range(l_start..l_end, "");
     empty.replace_range(start..end, "");
-    let e = case::load_str("cases/fiber_column_cyclic.toml", &empty).unwrap_err();
+    let e = crate::catalogue::load_str("cases/fiber_column_cyclic.toml", &empty).unwrap_err();
     assert_eq!(e.key, "section", "{e}");
     let e = refused(
         "fiber_column_cyclic",
@@ -284,7 +285,7 @@ fn iterations_count_against_the_run_budget() {
             "reference = \"external\"\nmax_rhs_evals = 300\n",
             1,
         );
-    let c = case::load_str("cases/fiber_column_cyclic.toml", &text).unwrap();
+    let c = crate::catalogue::load_str("cases/fiber_column_cyclic.toml", &text).unwrap();
     let p = (family_of(&c).compile)(&c, &c.scenes[0]).unwrap();
     let v = family_of(&c)
         .find("so3", "newton_disp_krylov", "force_based")
@@ -308,7 +309,7 @@ fn the_prelude_counts_against_max_steps() {
             "reference = \"external\"\nmax_steps = 5885\n",
             1,
         );
-    let c = case::load_str("cases/fiber_column_cyclic.toml", &text).unwrap();
+    let c = crate::catalogue::load_str("cases/fiber_column_cyclic.toml", &text).unwrap();
     let p = (family_of(&c).compile)(&c, &c.scenes[0]).unwrap();
     let v = family_of(&c)
         .find("so3", "newton_disp_krylov", "force_based")

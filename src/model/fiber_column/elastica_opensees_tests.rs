@@ -3,7 +3,7 @@
 //! 5 Lobatto points; 10 and 40 elements; 20 load steps to an energy increment of 1e-24) and
 //! the exact tips stored beside them (shooting; they agree with the suite's elliptic-integral
 //! tips to 5.1e-15 L), read through the manifest check of the external references.
-use crate::problem::{self, Stepping, Want};
+use crate::problem::{Stepping, Want};
 
 /// With 10 (`force_based`) and 40 (`force_based_fine`) elements, the suite's tip error on
 /// every load P L^2 / EI = 1, 2, 5, 10 is at most OpenSees' `forceBeamColumn` error on the
@@ -19,12 +19,12 @@ fn elastica_at_least_as_accurate_as_opensees() {
     for k in ["tool", "command", "accuracy_claim", "cross_check"] {
         assert!(file["provenance"][k].is_string(), "provenance.{k}");
     }
-    let cases = crate::case::embedded().unwrap();
+    let cases = crate::catalogue::embedded().unwrap();
     let case = cases
         .iter()
         .find(|c| c.name == "fiber_column_static")
         .unwrap();
-    let family = problem::family_of(case);
+    let family = crate::catalogue::family_of(case);
     for (alpha, scene) in [
         ("1.0", "elastica_p1"),
         ("2.0", "elastica_p2"),

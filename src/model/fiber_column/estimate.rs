@@ -196,7 +196,8 @@ pub fn estimate(case: &Case, scene: &Scene) -> Estimate {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::case::{CaseError, load_str};
+    use crate::case::CaseError;
+    use crate::catalogue::load_str;
 
     /// The catalogue file `name` with `old` replaced by `new` (which must occur), loaded.
     fn edited(name: &str, old: &str, new: &str) -> Result<Case, CaseError> {

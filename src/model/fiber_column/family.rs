@@ -224,6 +224,7 @@ pub static FAMILY: Family = Family {
     // solver settings.
     settings: &["numerics"],
     stability_quick: &["newmark", "hht", "gen_alpha", "midpoint", "newton_load"],
+    study: None,
     // Its references: the static scenes' elastica (exact), the cyclic and pulse scenes' OpenSees runs (external).
     references: &[crate::case::ReferenceKind::Exact, crate::case::ReferenceKind::External],
 };

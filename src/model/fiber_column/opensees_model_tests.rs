@@ -4,7 +4,7 @@
 //! a case file with one mapped key changed is refused, naming that case key and the record's
 //! key it maps to.
 use crate::case;
-use crate::problem::family_of;
+use crate::catalogue::family_of;
 
 /// The catalogue's text of case `name`, without its gates.
 fn source(name: &str) -> String {
@@ -18,7 +18,7 @@ fn source(name: &str) -> String {
 
 /// Loads `text` as case `name`, compiles `scene` and attaches its stored reference.
 fn attach(name: &str, text: &str, scene: &str) -> Result<(), String> {
-    let c = case::load_str(&format!("cases/{name}.toml"), text).map_err(|e| format!("load: {e}"))?;
+    let c = crate::catalogue::load_str(&format!("cases/{name}.toml"), text).map_err(|e| format!("load: {e}"))?;
     let s = c.scene(scene).expect("scene");
     let mut p = (family_of(&c).compile)(&c, s).map_err(|e| format!("compile: {e}"))?;
     p.attach_reference(&crate::cli::default_references())

@@ -30,7 +30,7 @@ use crate::metrics::Scores;
 use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
 use crate::reference;
 use crate::run::Grid;
-use crate::suite::Ladders;
+use crate::case::Ladders;
 use crate::summary::{self, Series};
 
 /// The attached reference.
@@ -101,8 +101,8 @@ impl FiberProblem {
                 max_rhs_evals: case.max_rhs_evals,
                 max_work: case.max_work,
             },
-            ladders: crate::plan::ladders(&scene.ladders),
-            quick: crate::plan::ladders(&scene.quick),
+            ladders: scene.ladders.values(),
+            quick: scene.quick.values(),
             reference: None,
         })
     }

@@ -108,7 +108,8 @@ pub fn estimate(case: &Case, scene: &Scene) -> Estimate {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::case::{CaseError, load_str};
+    use crate::case::CaseError;
+    use crate::catalogue::load_str;
 
     fn edited(old: &str, new: &str) -> Result<Case, CaseError> {
         let (label, text) = crate::case::embedded_sources()

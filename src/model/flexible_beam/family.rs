@@ -202,6 +202,7 @@ pub static FAMILY: Family = Family {
         "scene.energy_scale",
     ],
     stability_quick: &["rk4", "newmark", "implicit_midpoint", "gen_alpha_i3"],
+    study: None,
     // Its references: `fe_exact` integrated by `mbdbench reference` (numerical).
     references: &[crate::case::ReferenceKind::Numerical],
 };

@@ -2,7 +2,8 @@
 //! file and key named, the registered variants run through `Problem`, the trajectory columns
 //! are the documented ones, `modal_linear` diverges with a typed failure, and the momentum
 //! form conserves the free hub's angular momentum to round-off.
-use crate::case::{Case, load_str};
+use crate::case::Case;
+use crate::catalogue::load_str;
 use crate::problem::{Problem, Stepping, Want};
 
 const TEXT: &str = include_str!("../../../cases/flexible_beam.toml");

@@ -25,7 +25,7 @@ use crate::metrics::Scores;
 use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
 use crate::reference;
 use crate::run::{Grid, Observe, RunOutput};
-use crate::suite::Ladders;
+use crate::case::Ladders;
 use crate::summary::Series;
 
 /// What a run function needs.
@@ -84,8 +84,8 @@ impl BeamProblem {
                 },
                 limits: case.limits(),
             },
-            ladders: crate::plan::ladders(&scene.ladders),
-            quick: crate::plan::ladders(&scene.quick),
+            ladders: scene.ladders.values(),
+            quick: scene.quick.values(),
             reference: None,
         })
     }

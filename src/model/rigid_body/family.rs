@@ -1,4 +1,4 @@
-//! The rigid-body family's line in the family table (`problem::FAMILIES`): its case-file key
+//! The rigid-body family's line in the family table (`catalogue::FAMILIES`): its case-file key
 //! `rigid_body`, the three record axes in report order (the 11 pose charts, the integrators
 //! of the rigid core, the `body` / `spatial` Newton-Euler formulations), its metrics
 //! (cases/README.md, "Rigid-body metrics") and trajectory columns, and the registered variants of
@@ -28,6 +28,7 @@ pub static FAMILY: Family = Family {
     // body, springs and initial state alone.
     settings: &[],
     stability_quick: &[],
+    study: Some(super::stability::study),
     // Its references: integrated by `mbdbench reference` (numerical) or the torque-free closed form (exact).
     references: &[crate::case::ReferenceKind::Numerical, crate::case::ReferenceKind::Exact],
 };

@@ -21,6 +21,7 @@ pub mod baseline;
 pub mod case;
 pub mod family;
 pub mod figures;
+pub mod methods;
 pub mod momentum_drift;
 pub mod plan;
 pub mod problem;
@@ -28,6 +29,7 @@ pub mod reference;
 pub mod refgen;
 pub mod registry;
 pub mod score;
+pub mod stability;
 pub mod trajectory_error;
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3, Vector6};

@@ -2,12 +2,13 @@
 //! model conserves (`RigidBody::conserved_momenta`: the world vector for a torque-free body; the
 //! vertical component about the pivot and the spin for the heavy top) of `|L - L0| / |L0|`.
 //! Absent where nothing is conserved (springs), null when the run failed.
+use crate::model::rigid_body::Observation;
 use crate::metrics::Scores;
 use crate::model::rigid_body::RigidBody;
 use crate::run::RunOutput;
 
 /// Scores the momentum drift; does nothing when the body conserves no momentum.
-pub fn score(out: &RunOutput, body: &RigidBody, s: &mut Scores) {
+pub fn score(out: &RunOutput<Observation>, body: &RigidBody, s: &mut Scores) {
     let Some(first) = out.samples.first() else {
         return;
     };

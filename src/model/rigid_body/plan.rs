@@ -1,22 +1,21 @@
 //! The rigid body's plan of one scene: the compiled body, the initial state, the grid, the
 //! work limits, the ladders and the physics hash, as `RigidProblem`, the stability study and
 //! the benches use them (cases/README.md, "Case-file keys"; the shared parts come from
-//! `crate::plan`). Fails with a `CaseError` naming the scene when the scene is not a rigid-body
+//! `case` and `catalogue`). Fails with a `CaseError` naming the scene when the scene is not a rigid-body
 //! scene.
 use crate::case::{self, Case, Scene};
-use crate::plan::{ladders, select};
 use crate::run::Grid;
-use crate::suite::Ladders;
+use crate::case::Ladders;
 
 use super::case as rigid_case;
-use super::registry::Setup;
+use super::registry::RigidSetup;
 
 /// Everything the suite needs of one scene.
 #[derive(Debug, Clone)]
 pub struct ScenePlan {
     pub case: String,
     pub scene: String,
-    pub setup: Setup,
+    pub setup: RigidSetup,
     pub energy_scale: f64,
     pub primary_metric: String,
     pub inputs_sha256: String,
@@ -40,7 +39,7 @@ pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
     Ok(ScenePlan {
         case: c.name.clone(),
         scene: s.name.clone(),
-        setup: Setup {
+        setup: RigidSetup {
             body,
             initial,
             grid: Grid {
@@ -55,8 +54,8 @@ pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
         primary_metric: c.primary_metric.clone(),
         inputs_sha256: case::inputs_sha256(c, s),
         settings_sha256: s.settings_sha256.clone(),
-        ladders: ladders(s.ladder(false)),
-        quick: ladders(s.ladder(true)),
+        ladders: s.ladder(false).values(),
+        quick: s.ladder(true).values(),
     })
 }
 
@@ -67,7 +66,7 @@ pub fn plans(
     case_filter: &[String],
     scene_filter: &[String],
 ) -> Result<Vec<ScenePlan>, String> {
-    select(cases, case_filter, scene_filter)?
+    case::select(cases, case_filter, scene_filter)?
         .into_iter()
         .map(|(c, s)| scene_plan(c, s).map_err(|e| e.to_string()))
         .collect()

@@ -7,6 +7,7 @@
 //!
 //! The timing pass runs the same function with `Observe::Final` on a setup prepared once, so
 //! a timed repeat does exactly the work of the scored run minus its observations.
+use crate::model::rigid_body::Observation;
 use std::path::Path;
 
 use crate::case::ReferenceKind;
@@ -14,7 +15,7 @@ use crate::integrate::MethodInfo;
 use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
 use super::reference::{self, Loaded};
 use crate::model::rigid_body::refgen;
-use crate::model::rigid_body::registry::{self, Setup};
+use crate::model::rigid_body::registry::{self, RigidSetup};
 use crate::run::Observe;
 use crate::model::rigid_body::score::{self, ScoreContext};
 use crate::model::rigid_body::plan::ScenePlan;
@@ -26,7 +27,7 @@ pub struct RigidProblem {
     /// How the case's references are made.
     pub kind: ReferenceKind,
     /// The plan's setup observing only the final state (the timing pass).
-    timing: Setup,
+    timing: RigidSetup,
     pub reference: Option<Loaded>,
 }
 
@@ -179,10 +180,10 @@ impl Problem for RigidProblem {
 }
 
 /// Every sample as the family's named columns (the quaternion in canonical sign, w >= 0).
-fn columns(plan: &ScenePlan, out: &crate::run::RunOutput) -> Columns {
+fn columns(plan: &ScenePlan, out: &crate::run::RunOutput<Observation>) -> Columns {
     let s = &out.samples;
     let body = &plan.setup.body;
-    let flat = |f: &dyn Fn(&crate::run::Sample) -> Vec<f64>| s.iter().flat_map(f).collect();
+    let flat = |f: &dyn Fn(&crate::run::Sample<Observation>) -> Vec<f64>| s.iter().flat_map(f).collect();
     Columns {
         t: s.iter().map(|x| x.t).collect(),
         columns: vec![

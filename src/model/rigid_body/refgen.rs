@@ -21,7 +21,7 @@ use crate::model::rigid_body::{Observation, RigidBody};
 use crate::model::torque_free::{TorqueFreeExact, spin_exact};
 
 use super::reference::{AccuracyClaim, CrossCheck, Provenance, Reference};
-use crate::model::rigid_body::registry::{self, Setup};
+use crate::model::rigid_body::registry::{self, RigidSetup};
 use crate::run::Grid;
 use crate::model::rigid_body::plan::ScenePlan;
 use crate::summary;
@@ -114,7 +114,7 @@ fn score_times(grid: &Grid) -> Result<Vec<f64>, String> {
 
 /// Runs a registered variant and returns its score-grid trajectory.
 fn run_track(
-    setup: &Setup,
+    setup: &RigidSetup,
     param: &str,
     integ: &str,
     form: &str,
@@ -161,7 +161,7 @@ pub fn primary_track(p: &Primary, plan: &ScenePlan) -> Result<Track, String> {
 /// The track of a torque-free body at the score times: the attitude and body angular
 /// velocity from `rotation(t)`, the centre of mass in uniform motion.
 fn exact_track(
-    setup: &Setup,
+    setup: &RigidSetup,
     rotation: impl Fn(f64) -> (UnitQuaternion<f64>, Vector3<f64>),
 ) -> Result<Track, String> {
     let o = setup.initial;

@@ -10,15 +10,15 @@
 //! written on SO(3) x R^3 in the body formulation. Per scene, the SE(3) charts (`se3_hq`,
 //! `dual_quat`) are `n/a` when the body does not translate (a pivot, or no mass).
 use crate::integrate::adaptive_rk::AdaptiveRk;
-use crate::integrate::compensated::GaussKahan;
+use super::methods::compensated::GaussKahan;
 use crate::integrate::crouch_grossman::CrouchGrossman;
 use crate::integrate::explicit_rk::ExplicitRk;
 use crate::integrate::implicit_rk::ImplicitRk;
-use crate::integrate::lgvi::Lgvi;
-use crate::integrate::lie_gen_alpha::LieGenAlpha;
-use crate::integrate::simo_wong::SimoWong;
-use crate::integrate::simo_wong_kahan::SimoWongKahan;
-use crate::integrate::splitting::Splitting;
+use super::methods::lgvi::Lgvi;
+use super::methods::lie_gen_alpha::LieGenAlpha;
+use super::methods::simo_wong::SimoWong;
+use super::methods::simo_wong_kahan::SimoWongKahan;
+use super::methods::splitting::Splitting;
 use crate::integrate::{Adaptive, FixedStep, Limits, MethodInfo};
 use crate::model::rigid_body::{Observation, RigidBody, RigidSystem};
 use crate::rotation::{
@@ -29,7 +29,7 @@ use crate::run::{Grid, Observe, RunOutput, Watched, run_adaptive, run_fixed};
 
 /// What a run function needs of a scene.
 #[derive(Debug, Clone)]
-pub struct Setup {
+pub struct RigidSetup {
     pub body: RigidBody,
     pub initial: Observation,
     pub grid: Grid,
@@ -40,7 +40,7 @@ pub struct Setup {
 }
 
 /// A monomorphised run: fixed step (`dt`) or tolerance (`tol`).
-pub type RunFn = fn(&Setup, f64) -> Result<RunOutput, String>;
+pub type RunFn = fn(&RigidSetup, f64) -> Result<RunOutput<Observation>, String>;
 
 /// One valid combination.
 #[derive(Clone, Copy)]
@@ -155,7 +155,7 @@ macro_rules! fixed {
             formulation: <$form as Formulation>::NAME,
             info: FixedStep::<RigidSystem<$chart, $form>>::info(&$ctor),
             se3: <$chart as PoseChart>::SE3,
-            run: |setup: &Setup, dt: f64| {
+            run: |setup: &RigidSetup, dt: f64| {
                 let sys = RigidSystem::<$chart, $form>::new(setup.body.clone());
                 let x0 = sys.state_from(&setup.initial);
                 let mut m = $ctor;
@@ -182,7 +182,7 @@ macro_rules! adaptive {
             formulation: <$form as Formulation>::NAME,
             info: Adaptive::<Watched<RigidSystem<$chart, $form>>>::info(&AdaptiveRk::$ctor(1e-6)),
             se3: <$chart as PoseChart>::SE3,
-            run: |setup: &Setup, tol: f64| {
+            run: |setup: &RigidSetup, tol: f64| {
                 let sys = RigidSystem::<$chart, $form>::new(setup.body.clone());
                 let x0 = sys.state_from(&setup.initial);
                 let mut m = AdaptiveRk::$ctor(tol);
@@ -244,7 +244,7 @@ fn build() -> Vec<Variant> {
     v
 }
 
-/// The compensated-summation variants (integrate::compensated), on the long-horizon study's
+/// The compensated-summation variants (methods::compensated), on the long-horizon study's
 /// charts only.
 fn for_kahan(v: &mut Vec<Variant>) {
     v.push(fixed!(

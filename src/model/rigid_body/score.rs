@@ -1,5 +1,6 @@
 //! Scoring one run: the metrics of `metrics/` applied to a run's output, and the series file
 //! (energy, constraint residual, conditioning and the primary error at the score times).
+use crate::model::rigid_body::Observation;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 use crate::math::so3;
@@ -19,7 +20,7 @@ pub struct ScoreContext<'a> {
 }
 
 /// Scores a run and builds its series.
-pub fn score(out: &RunOutput, cx: &ScoreContext) -> (Scores, Series) {
+pub fn score(out: &RunOutput<Observation>, cx: &ScoreContext) -> (Scores, Series) {
     let mut s = Scores::default();
     let translates = cx.body.translates();
     if let Some(r) = cx.reference {
@@ -49,7 +50,7 @@ pub fn score(out: &RunOutput, cx: &ScoreContext) -> (Scores, Series) {
     (s, series)
 }
 
-fn primary_error_at(metric: &str, smp: &crate::run::Sample, r: &Reference, k: usize) -> f64 {
+fn primary_error_at(metric: &str, smp: &crate::run::Sample<Observation>, r: &Reference, k: usize) -> f64 {
     match metric {
         "position_error_max" => (smp.obs.x - Vector3::from(r.position[k])).norm(),
         "velocity_error_max" => (smp.obs.v - Vector3::from(r.velocity[k])).norm(),

@@ -7,6 +7,7 @@
 //!
 //! A metric is only as good as the reference: values below about 100x the reference's
 //! accuracy claim say nothing about the method (the order fits exclude them).
+use crate::model::rigid_body::Observation;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 use crate::metrics::Scores;
@@ -15,7 +16,7 @@ use crate::model::rigid_body::reference::Reference;
 use crate::run::RunOutput;
 
 /// Scores a run against a reference sampled on the same score grid.
-pub fn score(out: &RunOutput, reference: &Reference, translates: bool, s: &mut Scores) {
+pub fn score(out: &RunOutput<Observation>, reference: &Reference, translates: bool, s: &mut Scores) {
     let names: &[&str] = if translates {
         &[
             "position_error_max",

@@ -1,7 +1,7 @@
 //! The spring chain's line in the family table: its `model` key, axes, metrics, columns and
 //! the table of its six variants (`rk4`, `dopri5`, `stormer_verlet` x `chain_nodal`,
 //! `chain_modal`; `param` is `none`), each a monomorphised run function.
-use super::problem::{ChainProblem, Setup};
+use super::problem::{ChainProblem, ChainSetup};
 use super::verlet::StormerVerlet;
 use super::{ChainObs, ChainSystem, Coordinates, Modal, Nodal};
 use crate::case::{Case, CaseError, Estimate, OdeCosts, Scene, ode_estimate};
@@ -99,15 +99,16 @@ pub static FAMILY: Family = Family {
     figures: &FIGURES,
     settings: &[],
     stability_quick: &["rk4"],
+    study: None,
     // Its references: the chain's closed form (exact).
     references: &[crate::case::ReferenceKind::Exact],
 };
 
 /// A monomorphised run.
-pub type RunFn = fn(&Setup, Stepping, &Observe) -> Result<RunOutput<ChainObs>, String>;
+pub type RunFn = fn(&ChainSetup, Stepping, &Observe) -> Result<RunOutput<ChainObs>, String>;
 
 fn fixed<C: Coordinates, M: FixedStep<ChainSystem<C>>>(
-    s: &Setup,
+    s: &ChainSetup,
     stepping: Stepping,
     observe: &Observe,
     mut m: M,
@@ -121,7 +122,7 @@ fn fixed<C: Coordinates, M: FixedStep<ChainSystem<C>>>(
 }
 
 fn dopri5<C: Coordinates>(
-    s: &Setup,
+    s: &ChainSetup,
     stepping: Stepping,
     observe: &Observe,
 ) -> Result<RunOutput<ChainObs>, String> {

@@ -17,12 +17,12 @@ use crate::metrics::{Scores, energy_drift};
 use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
 use crate::reference::{self, Stored};
 use crate::run::{Grid, Observe, RunOutput};
-use crate::suite::Ladders;
+use crate::case::Ladders;
 use crate::summary::{self, Series};
 
 /// What a run function needs.
 #[derive(Debug, Clone)]
-pub struct Setup {
+pub struct ChainSetup {
     pub chain: Chain,
     pub initial: ChainObs,
     pub grid: Grid,
@@ -101,7 +101,7 @@ pub struct ChainProblem {
     settings_sha256: String,
     primary_metric: String,
     energy_scale: f64,
-    setup: Setup,
+    setup: ChainSetup,
     ladders: Ladders,
     quick: Ladders,
     reference: Option<(ChainReference, String)>,
@@ -125,7 +125,7 @@ impl ChainProblem {
             settings_sha256: scene.settings_sha256.clone(),
             primary_metric: case.primary_metric.clone(),
             energy_scale: case.energy_scale,
-            setup: Setup {
+            setup: ChainSetup {
                 chain: c.chain(),
                 initial: s.initial,
                 grid: Grid {
@@ -135,8 +135,8 @@ impl ChainProblem {
                 },
                 limits: case.limits(),
             },
-            ladders: crate::plan::ladders(&scene.ladders),
-            quick: crate::plan::ladders(&scene.quick),
+            ladders: scene.ladders.values(),
+            quick: scene.quick.values(),
             reference: None,
         })
     }

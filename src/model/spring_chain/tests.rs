@@ -77,8 +77,8 @@ fn end_to_end_through_the_command_line() {
     let out = temp("e2e");
     let o = out.display().to_string();
     assert_eq!(cli(&["list"]), 0);
-    let cases = crate::case::load_dir(&root().join("tests/fixtures/cases")).unwrap();
-    let problems = crate::plan::problems(&cases, &[], &[]).unwrap();
+    let cases = crate::catalogue::load_dir(&root().join("tests/fixtures/cases")).unwrap();
+    let problems = crate::catalogue::problems(&cases, &[], &[]).unwrap();
     assert_eq!(problems.len(), 2);
     let cells: Vec<_> = crate::problem::matrix(problems[0].family()).collect();
     assert_eq!(cells.len(), 6);

@@ -57,7 +57,7 @@ pub(super) fn sensitivity_plot(
          (dop853/so3/body at tol {}). Where G passes 1e7 a round-off-sized difference has grown \
          past 1e-9, so errors below 1e-9 measured beyond that time (the predictable horizon in \
          the legend) say nothing about a method.",
-        num(crate::stability::sensitivity::TOL)
+        num(crate::model::rigid_body::stability::sensitivity::TOL)
     );
     if !missing.is_empty() {
         caption.push_str(&format!(" No series file for: {}.", missing.join(", ")));

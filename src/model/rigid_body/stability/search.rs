@@ -12,7 +12,7 @@
 //!   the probe's own score times; its accuracy is checked against the stored references in
 //!   the tests (well below the 0.1 rad bounds it judges).
 //!
-//! Search: a geometric ladder `n = CAP_STEPS * 2^j` (the cap `dt = t_h / 20`), up to the first
+//! Search (`stability::steps`, shared with the seam's search of the other families): a geometric ladder `n = CAP_STEPS * 2^j` (the cap `dt = t_h / 20`), up to the first
 //! passing `n` (at most `MAX_STEPS` for the stable search, `MAX_ACCURATE_STEPS` for the
 //! accurate one; a probe stops at the first score time past a bound), then bisection on `n` between the last failing and the
 //! first passing count until they differ by less than 5 % (`RESOLUTION`); the result is `t_h`
@@ -33,14 +33,15 @@
 //! failure kind or the bound crossed at the first failing step beyond it, with its time), or
 //! why the metric is null (nothing passed down to `MAX_STEPS`).
 
-/// The model families this part applies to (the rigid body: it varies its charts, springs
-/// and initial state).
-pub const FAMILIES: &[&str] = &["rigid_body"];
+use crate::model::rigid_body::Observation;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use crate::case::{Case, StabilitySpec};
-use crate::integrate::{Failure, FailureKind};
+use crate::stability::steps::{
+    CAP_STEPS, Found, Limit, Probe, QUICK_MAX_STEPS, TOL_CAP, TOL_FLOOR, Verdict, metric_names,
+    probe_limits, search_steps, search_tol,
+};
 use crate::model::linear_modes;
 use crate::model::rigid_body::plan::ScenePlan;
 use crate::model::rigid_body::registry::{self, Variant};
@@ -49,8 +50,6 @@ use crate::summary::{Record, Status};
 
 /// Score times over the horizon.
 pub const SCORE_POINTS: u64 = 200;
-/// The coarsest step tried: `t_h / CAP_STEPS`.
-pub const CAP_STEPS: u64 = 20;
 /// The finest step tried in the stable search: `t_h / MAX_STEPS` (full tier; about 2e7
 /// steps: explicit Euler's stable step over the stiffness ladder's fixed 10 s horizon takes
 /// 2.5e6 steps at k x 1e3 and is "nothing passed" at k x 1e4, measured).
@@ -62,17 +61,8 @@ pub const MAX_STEPS: u64 = 20 * (1 << 20);
 /// the scene's 253 core-seconds; at this budget their accurate step is "nothing passed" with
 /// the error at the finest step in the reason.
 pub const MAX_ACCURATE_STEPS: u64 = 20 * (1 << 17);
-/// The same in the quick tier (about 3e5 steps: explicit Euler's accurate step is then
-/// usually "nothing passed").
-pub const QUICK_MAX_STEPS: u64 = 20 * (1 << 14);
-/// Bisection stops when the failing and passing values differ by less than this ratio.
-pub const RESOLUTION: f64 = 1.05;
 /// Relative energy error that counts as unbounded growth.
 pub const ENERGY_BOUND: f64 = 1.0;
-/// The loosest tolerance tried (adaptive variants).
-pub const TOL_CAP: f64 = 1.0;
-/// The tightest tolerance tried.
-pub const TOL_FLOOR: f64 = 1e-13;
 /// Tolerance of the on-the-fly reference.
 pub const REFERENCE_TOL: f64 = 1e-12;
 
@@ -170,42 +160,6 @@ pub fn score_indices(n: u64) -> Arc<[u64]> {
     v.into()
 }
 
-/// Why a probe failed, for `metric_reasons`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Limit {
-    /// A failure kind (`non_finite`, `newton_failure` ...) or `bound_exceeded`.
-    pub kind: FailureKind,
-    pub t: f64,
-    pub message: String,
-}
-
-impl Limit {
-    pub(crate) fn from_failure(f: &Failure) -> Limit {
-        Limit {
-            kind: f.kind,
-            t: f.t,
-            message: f.message.clone(),
-        }
-    }
-    fn text(&self, at: &str) -> String {
-        let kind = serde_json::to_value(self.kind)
-            .ok()
-            .and_then(|v| v.as_str().map(str::to_string))
-            .unwrap_or_default();
-        format!("{kind} at t = {:.6} with {at}: {}", self.t, self.message)
-    }
-}
-
-/// A probe's verdict.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Verdict {
-    Pass,
-    Fail(Limit),
-    /// The probe could not be judged (the on-the-fly reference failed, a grid the run
-    /// refused): the search stops and its metric is null with this reason.
-    Error(String),
-}
-
 /// The on-the-fly reference of a scene: `dop853`/`so3`/`body` at `REFERENCE_TOL`, observed on
 /// `REFERENCE_POINTS` uniform times over the horizon and interpolated between them by cubic
 /// Hermite on the quaternion (`q' = q (0, omega) / 2`, then normalised): with `w dt_ref` at
@@ -214,7 +168,7 @@ pub enum Verdict {
 /// horizon of the stiffest ladder scene, `w dt_ref ~ 0.2`, gives ~4e-6). Computed once per
 /// scene, on first use.
 pub struct OnTheFly {
-    dense: std::sync::OnceLock<Result<Vec<Sample>, String>>,
+    dense: std::sync::OnceLock<Result<Vec<Sample<Observation>>, String>>,
 }
 
 /// Uniform reference samples over the horizon.
@@ -248,11 +202,15 @@ impl OnTheFly {
 }
 
 /// Cubic Hermite interpolation of the rotation between two samples.
-fn hermite(a: &Sample, b: &Sample, t: f64) -> nalgebra::UnitQuaternion<f64> {
+fn hermite(
+    a: &Sample<Observation>,
+    b: &Sample<Observation>,
+    t: f64,
+) -> nalgebra::UnitQuaternion<f64> {
     use nalgebra::Quaternion;
     let h = b.t - a.t;
     let s = ((t - a.t) / h).clamp(0.0, 1.0);
-    let rate = |x: &Sample| {
+    let rate = |x: &Sample<Observation>| {
         let w = x.obs.omega;
         x.obs.q.into_inner() * Quaternion::new(0.0, w[0], w[1], w[2]) * 0.5
     };
@@ -274,7 +232,7 @@ fn hermite(a: &Sample, b: &Sample, t: f64) -> nalgebra::UnitQuaternion<f64> {
     nalgebra::UnitQuaternion::from_quaternion(q)
 }
 
-fn reference_samples(scene: &StudyScene) -> Result<Vec<Sample>, String> {
+fn reference_samples(scene: &StudyScene) -> Result<Vec<Sample<Observation>>, String> {
     let v = registry::find("so3", "dop853", "body").ok_or("dop853/so3/body is not registered")?;
     let n = REFERENCE_POINTS;
     let at: Vec<u64> = (1..n).collect();
@@ -301,19 +259,6 @@ fn reference_samples(scene: &StudyScene) -> Result<Vec<Sample>, String> {
     Ok(out.samples)
 }
 
-/// The work budget of one probe: the tier's step budget, for adaptive runs too (an adaptive
-/// run that needs more steps than the finest fixed step tried is not a stable setting at
-/// its tolerance: at loose tolerances some charts crawl on tiny steps, which the default
-/// budget of 1e8 steps turned into searches of several minutes), and 16 RHS evaluations a
-/// step (dop853's 12 plus rejections; Newton iterations are counted separately).
-pub fn probe_limits(max_steps: u64) -> crate::integrate::Limits {
-    crate::integrate::Limits {
-        max_steps,
-        max_rhs_evals: max_steps.saturating_mul(16),
-        max_adaptive_rhs_evals: max_steps.saturating_mul(16),
-    }
-}
-
 /// Runs `v` over the horizon observed at the score times of `n` steps; `value` is the step
 /// (fixed: `t_h / n`) or the tolerance (adaptive). The run stops at the first observation
 /// past the energy bound, and past the rotation bound when `reference` is given.
@@ -323,7 +268,7 @@ fn observe_run(
     n: u64,
     value: f64,
     reference: Option<&OnTheFly>,
-) -> Result<RunOutput, String> {
+) -> Result<RunOutput<Observation>, String> {
     let at = score_indices(n);
     let rotation = match reference {
         None => None,
@@ -379,192 +324,6 @@ pub fn probe(
     }
 }
 
-/// A probe point: a step count or a tolerance.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Probe {
-    Steps(u64),
-    Tol(f64),
-}
-
-/// The outcome of one search.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Found {
-    /// The largest passing step (or tolerance); None when nothing passed.
-    pub value: Option<f64>,
-    /// The step count that passed (fixed-step searches).
-    pub n: Option<u64>,
-    /// The passing value is the cap (no failure at any step tried).
-    pub capped: bool,
-    /// What failed at the next coarser probe, and where (none when capped).
-    pub limit: Option<(String, Limit)>,
-    /// Probes run.
-    pub probes: u32,
-    /// Why the search could not be completed (`Verdict::Error`).
-    pub error: Option<String>,
-}
-
-impl Found {
-    fn error(e: String, probes: u32) -> Found {
-        Found {
-            value: None,
-            n: None,
-            capped: false,
-            limit: None,
-            probes,
-            error: Some(e),
-        }
-    }
-
-    /// The sentence for `metric_reasons` (this search's cap, `t_h / CAP_STEPS`).
-    pub fn reason(&self, horizon: f64) -> String {
-        self.reason_with(&format!(
-            "dt = t_h / {CAP_STEPS}, tol = {TOL_CAP:e}; t_h = {horizon:.6} s"
-        ))
-    }
-
-    /// The sentence for `metric_reasons`, the cap described by `cap`.
-    pub fn reason_with(&self, cap: &str) -> String {
-        if let Some(e) = &self.error {
-            return format!("search not completed: {e}");
-        }
-        match (&self.value, self.capped, &self.limit) {
-            (Some(_), true, _) => format!("bounded up to the cap ({cap})"),
-            (Some(_), false, Some((at, l))) => format!("limited by {}", l.text(at)),
-            (None, _, Some((at, l))) => format!("nothing passed: {}", l.text(at)),
-            _ => "nothing passed".into(),
-        }
-    }
-}
-
-/// Bisection-and-ladder search over step counts from `n_start` up (doubling, at most
-/// `max_steps`), for the first `n` that passes `pass`; the step of `n` is `unit / n`, and a
-/// pass at `n = cap` is the cap.
-pub(crate) fn search_steps(
-    n_start: u64,
-    cap: u64,
-    max_steps: u64,
-    mut pass: impl FnMut(u64) -> Verdict,
-    unit: f64,
-) -> Found {
-    let mut probes = 0;
-    let mut last_fail: Option<(u64, Limit)> = None;
-    let mut n = n_start;
-    let n_pass = loop {
-        probes += 1;
-        match pass(n) {
-            Verdict::Pass => break Some(n),
-            Verdict::Fail(l) => last_fail = Some((n, l)),
-            Verdict::Error(e) => return Found::error(e, probes),
-        }
-        if n >= max_steps {
-            break None;
-        }
-        n = (n * 2).min(max_steps);
-    };
-    let Some(mut hi) = n_pass else {
-        return Found {
-            value: None,
-            n: None,
-            capped: false,
-            limit: last_fail.map(|(n, l)| (format!("n = {n} steps"), l)),
-            probes,
-            error: None,
-        };
-    };
-    let Some((mut lo, mut lo_limit)) = last_fail else {
-        return Found {
-            value: Some(unit / hi as f64),
-            n: Some(hi),
-            capped: hi == cap,
-            limit: None,
-            probes,
-            error: None,
-        };
-    };
-    while hi - lo > 1 && (hi as f64) / (lo as f64) >= RESOLUTION {
-        let mid = lo + (hi - lo) / 2;
-        probes += 1;
-        match pass(mid) {
-            Verdict::Pass => hi = mid,
-            Verdict::Fail(l) => {
-                lo = mid;
-                lo_limit = l;
-            }
-            Verdict::Error(e) => return Found::error(e, probes),
-        }
-    }
-    Found {
-        value: Some(unit / hi as f64),
-        n: Some(hi),
-        capped: false,
-        limit: Some((
-            format!("dt = {:.6e} (n = {lo})", unit / lo as f64),
-            lo_limit,
-        )),
-        probes,
-        error: None,
-    }
-}
-
-/// The same over tolerances, from `tol_start` down.
-fn search_tol(tol_start: f64, mut pass: impl FnMut(f64) -> Verdict) -> Found {
-    let mut probes = 0;
-    let mut last_fail: Option<(f64, Limit)> = None;
-    let mut tol = tol_start;
-    let t_pass = loop {
-        probes += 1;
-        match pass(tol) {
-            Verdict::Pass => break Some(tol),
-            Verdict::Fail(l) => last_fail = Some((tol, l)),
-            Verdict::Error(e) => return Found::error(e, probes),
-        }
-        if tol <= TOL_FLOOR * 1.000001 {
-            break None;
-        }
-        tol = (tol / 10.0).max(TOL_FLOOR);
-    };
-    let Some(mut good) = t_pass else {
-        return Found {
-            value: None,
-            n: None,
-            capped: false,
-            limit: last_fail.map(|(t, l)| (format!("tol = {t:.3e}"), l)),
-            probes,
-            error: None,
-        };
-    };
-    let Some((mut bad, mut bad_limit)) = last_fail else {
-        return Found {
-            value: Some(good),
-            n: None,
-            capped: good == TOL_CAP,
-            limit: None,
-            probes,
-            error: None,
-        };
-    };
-    while bad / good >= RESOLUTION {
-        let mid = (bad * good).sqrt();
-        probes += 1;
-        match pass(mid) {
-            Verdict::Pass => good = mid,
-            Verdict::Fail(l) => {
-                bad = mid;
-                bad_limit = l;
-            }
-            Verdict::Error(e) => return Found::error(e, probes),
-        }
-    }
-    Found {
-        value: Some(good),
-        n: None,
-        capped: false,
-        limit: Some((format!("tol = {bad:.3e}"), bad_limit)),
-        probes,
-        error: None,
-    }
-}
-
 /// Both searches of one variant on one scene: (largest stable, largest accurate).
 pub fn search(v: &Variant, scene: &StudyScene, reference: &OnTheFly) -> (Found, Found) {
     if v.info.adaptive {
@@ -604,27 +363,6 @@ pub fn search(v: &Variant, scene: &StudyScene, reference: &OnTheFly) -> (Found, 
         (stable, accurate)
     }
 }
-
-/// The metric names of a variant's record: `largest_stable_dt`/`_tol` and
-/// `largest_accurate_dt`/`_tol`.
-pub fn metric_names(adaptive: bool) -> (&'static str, &'static str) {
-    if adaptive {
-        ("largest_stable_tol", "largest_accurate_tol")
-    } else {
-        ("largest_stable_dt", "largest_accurate_dt")
-    }
-}
-
-/// Every metric name the search writes (the gate's known names).
-pub const METRICS: &[&str] = &[
-    "largest_stable_dt",
-    "largest_accurate_dt",
-    "largest_stable_tol",
-    "largest_accurate_tol",
-    "stability_horizon",
-    "fastest_period",
-    "first_period",
-];
 
 /// The record of one search (`dt`/`tol` absent: the record is per variant, not per ladder
 /// point).

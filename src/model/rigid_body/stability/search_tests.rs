@@ -1,6 +1,8 @@
 //! Tests of the rigid body's step search (`search.rs`): the score indices, the step and
 //! tolerance searches on synthetic verdicts, and the on-the-fly reference against the stored one.
 use super::*;
+use crate::integrate::FailureKind;
+use crate::stability::steps::RESOLUTION;
 use crate::math::so3;
 
 fn fail(n: f64) -> Verdict {
@@ -95,7 +97,7 @@ fn tol_search_brackets_the_boundary() {
 /// far below the 0.1 rad bound it judges.
 #[test]
 fn on_the_fly_reference_matches_the_stored_one() {
-    let cases = crate::case::embedded().unwrap();
+    let cases = crate::catalogue::embedded().unwrap();
     let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
     let plan =
         crate::model::rigid_body::plan::scene_plan(c, c.scene("two_angles").unwrap()).unwrap();

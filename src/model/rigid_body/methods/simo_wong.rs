@@ -45,10 +45,10 @@
 //! (`|Theta| -> infinity` is a half turn) or the forces are too stiff for the step.
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 
-use super::lu6::Lu6;
-use super::newton_stop::{NewtonStop, relative, update_norm};
+use crate::integrate::lu6::Lu6;
+use crate::integrate::newton_stop::{NewtonStop, relative, update_norm};
 use super::own_state::So3State;
-use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
+use crate::integrate::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
 use crate::math::so3;
 use crate::model::rigid_body::{RigidBody, RigidSystem};
 use crate::rotation::{Body, Pose, So3};

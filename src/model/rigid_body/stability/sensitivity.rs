@@ -21,14 +21,11 @@
 //! Lyapunov spectrum; the weights of the units are a choice (a scene measured in mm would
 //! differ); a growth at the integration error's level (G ~ 1e-2) is noise.
 
-/// The model families this part applies to (the rigid body: it varies its charts, springs
-/// and initial state).
-pub const FAMILIES: &[&str] = &["rigid_body"];
 use std::collections::BTreeMap;
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
-use super::{Part, StudyOptions};
+use crate::stability::{Part, StudyOptions};
 use crate::case::Case;
 use crate::math::so3;
 use crate::model::rigid_body::Observation;
@@ -94,7 +91,7 @@ fn difference(a: &Observation, b: &Observation, n: usize) -> SVector<f64, 12> {
 /// direction (unit weights on rad, m, m/s, rad/s).
 pub fn growth(plan: &ScenePlan) -> Result<Vec<(f64, f64)>, String> {
     let v = registry::find("so3", "dop853", "body").ok_or("dop853/so3/body is not registered")?;
-    let run = |initial| -> Result<RunOutput, String> {
+    let run = |initial| -> Result<RunOutput<Observation>, String> {
         let mut setup = plan.setup.clone();
         setup.initial = initial;
         let out = (v.run)(&setup, TOL)?;
@@ -238,7 +235,7 @@ mod tests {
     use super::*;
 
     fn plan(case: &str, scene: &str) -> ScenePlan {
-        let cases = crate::case::embedded().unwrap();
+        let cases = crate::catalogue::embedded().unwrap();
         let c = cases.iter().find(|c| c.name == case).unwrap();
         crate::model::rigid_body::plan::scene_plan(c, c.scene(scene).unwrap()).unwrap()
     }

@@ -23,10 +23,10 @@
 use nalgebra::{Matrix6, Vector3, Vector6};
 
 use super::compensated::{CompensatedRetract, add_compensated, so3_product_compensated};
-use super::newton_stop::{NewtonStop, relative, update_norm};
+use crate::integrate::newton_stop::{NewtonStop, relative, update_norm};
 use super::own_state::So3State;
 use super::simo_wong::{StepData, forward_jacobian};
-use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
+use crate::integrate::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
 use crate::math::so3;
 use crate::model::rigid_body::RigidSystem;
 use crate::rotation::{Body, Pose, So3};
@@ -224,7 +224,7 @@ impl FixedStep<RigidSystem<So3, Body>> for SimoWongKahan {
 mod tests {
     use super::*;
     use crate::integrate::rigid_test_support as ts;
-    use crate::integrate::simo_wong::SimoWong;
+    use super::super::simo_wong::SimoWong;
 
     /// The compensated scheme follows plain `simo_wong` to round-off over short runs (gni,
     /// nine_spring with translation, the heavy top): the same equations, solved differently.

@@ -52,8 +52,8 @@
 //! rounding the method does not see.
 use nalgebra::{Quaternion, SVector, UnitQuaternion, Vector3, Vector6};
 
-use super::implicit_rk::{GaussScheme, ImplicitRk, NewtonOptions};
-use super::{Failure, FixedStep, MethodInfo, Stats, System};
+use crate::integrate::implicit_rk::{GaussScheme, ImplicitRk, NewtonOptions};
+use crate::integrate::{Failure, FixedStep, MethodInfo, Stats, System};
 use crate::math::vector::Vector;
 use crate::model::rigid_body::{RigidState, RigidSystem};
 use crate::rotation::{Body, Pose, Quat, So3};

@@ -15,15 +15,13 @@
 //! step that is neither capped (`t_h / 20` passed: no stability limit to measure) nor null;
 //! fewer than three such points give `order: null` with the reason.
 
-/// The model families this part applies to (the rigid body: it varies its charts, springs
-/// and initial state).
-pub const FAMILIES: &[&str] = &["rigid_body"];
-use super::search::{self, StudyScene};
-use super::{Part, StudyOptions, narrowed, step_search};
+use super::search::StudyScene;
+use super::step_search;
+use crate::stability::{Part, StudyOptions, narrowed};
 use crate::case::Case;
 use crate::metrics::order::loglog_slope;
 use crate::model::rigid_body::case::RigidCase;
-use crate::suite::VariantFilter;
+use crate::selection::VariantFilter;
 use crate::summary::{FitRecord, Record, RunKey};
 
 /// The case and scene the ladder is generated from.
@@ -137,7 +135,7 @@ pub fn fits(records: &[Record], exps: &[i32]) -> Vec<FitRecord> {
             )
         })
         .collect();
-    keys.sort_by_key(|k| crate::problem::variant_order(k.0, k.1, k.2));
+    keys.sort_by_key(|k| crate::catalogue::variant_order(k.0, k.1, k.2));
     keys.dedup();
     let mut out = vec![];
     for (param, integ, form) in keys {
@@ -161,7 +159,7 @@ pub fn fits(records: &[Record], exps: &[i32]) -> Vec<FitRecord> {
                 continue;
             }
             let adaptive = rs[0].1.metrics.contains_key("largest_stable_tol");
-            let (sm, am) = search::metric_names(adaptive);
+            let (sm, am) = crate::stability::steps::metric_names(adaptive);
             for metric in [sm, am] {
                 let mut points = vec![];
                 let mut skipped = vec![];

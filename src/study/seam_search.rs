@@ -13,8 +13,8 @@
 //! every probe lands on every sample and breakpoint as the family's fixed-step loops require.
 //! A probe is *stable* when the run ends without a typed failure (the family's divergence
 //! bound, a non-finite state, a Newton failure, a budget) and every score it reports is
-//! finite. The search is `search::search_steps`: `n = 1, 2, 4, ...` up to the first passing
-//! count, then bisection to 5 % (`search::RESOLUTION`); the cap is one step per sample
+//! finite. The search is `steps::search_steps`: `n = 1, 2, 4, ...` up to the first passing
+//! count, then bisection to 5 % (`steps::RESOLUTION`); the cap is one step per sample
 //! interval, and a variant that passes there is "bounded up to the cap" (a lower bound, not a
 //! limit). Each probe's steps are bounded by the tier's budget (`QUICK_MAX_STEPS`, `MAX_STEPS`
 //! over the whole horizon); a variant that fails down to it is "nothing passed" with the last
@@ -27,15 +27,15 @@
 //! Deterministic: the records (all but `wall_s`) do not depend on `--jobs`.
 use std::collections::BTreeMap;
 
-use super::search::{self, Found, Limit, Verdict};
-use super::{Part, StudyOptions};
 use crate::case::Case;
 use crate::integrate::FailureKind;
-use crate::problem::{self, Problem, Stepping, Variant, Want};
+use crate::problem::{Problem, Stepping, Variant, Want};
+use crate::stability::steps::{self, Found, Limit, Verdict};
+use crate::stability::{Part, StudyOptions};
 use crate::summary::{Record, RunKey, Status};
 
 /// The step budget of one probe over the whole horizon, quick tier (about 3.3e5 steps).
-pub const QUICK_MAX_STEPS: u64 = search::QUICK_MAX_STEPS;
+pub const QUICK_MAX_STEPS: u64 = steps::QUICK_MAX_STEPS;
 /// The same, full tier (about 2.6e6 steps).
 pub const MAX_STEPS: u64 = 20 * (1 << 17);
 
@@ -63,7 +63,7 @@ impl SeamScene {
         periods: Option<f64>,
         quick: bool,
     ) -> Result<SeamScene, String> {
-        let family = problem::family_of(c);
+        let family = crate::catalogue::family_of(c);
         let s = c
             .scene(scene)
             .ok_or_else(|| format!("{}: no scene {scene}", c.file))?;
@@ -132,7 +132,7 @@ impl SeamScene {
 
     /// The search of `v`: its largest stable step.
     pub fn search(&self, v: &Variant) -> Found {
-        search::search_steps(1, 1, self.max_n, |n| self.probe(v, n), self.unit)
+        steps::search_steps(1, 1, self.max_n, |n| self.probe(v, n), self.unit)
     }
 
     /// The record of a search (per variant: no `dt`/`tol`).
@@ -179,7 +179,7 @@ pub fn scenes(
 ) -> Result<Vec<SeamScene>, String> {
     let mut out = vec![];
     for c in cases {
-        if search::FAMILIES.contains(&c.model)
+        if crate::catalogue::family_of(c).study.is_some()
             || !(case_filter.is_empty() || case_filter.contains(&c.name))
         {
             continue;
@@ -202,7 +202,7 @@ pub fn study(
     cases: &[Case],
     case_filter: &[String],
     scene_filter: &[String],
-    filter: &crate::suite::VariantFilter,
+    filter: &crate::selection::VariantFilter,
     opts: &StudyOptions,
 ) -> Result<Part, String> {
     let scenes = scenes(cases, case_filter, scene_filter, opts.quick)?;
@@ -219,7 +219,7 @@ pub fn study(
             }
         }
     }
-    let records = super::timed_searches(&jobs, opts, "seam steps", |&(i, v)| {
+    let records = crate::stability::timed_searches(&jobs, opts, "seam steps", |&(i, v)| {
         let s = &scenes[i];
         s.record(v, &s.search(v))
     })?;
@@ -234,7 +234,7 @@ mod tests {
     use super::*;
 
     fn scene() -> SeamScene {
-        let cases = crate::case::embedded().unwrap();
+        let cases = crate::catalogue::embedded().unwrap();
         let c = cases.iter().find(|c| c.name == "flexible_beam").unwrap();
         let periods = c.stability.as_ref().unwrap().periods;
         SeamScene::new(c, "spinup_w4", periods, true).unwrap()
@@ -247,14 +247,14 @@ mod tests {
     /// converges in one (bounded up to the cap).
     #[test]
     fn load_path_largest_converging_step() {
-        let cases = crate::case::embedded().unwrap();
+        let cases = crate::catalogue::embedded().unwrap();
         let c = cases
             .iter()
             .find(|c| c.name == "fiber_column_static")
             .unwrap();
         let s = SeamScene::new(c, "elastica_p10", None, true).unwrap();
         assert_eq!((s.horizon, s.unit, s.period), (1.0, 1.0, None));
-        let family = crate::problem::find_family("fiber_column").unwrap();
+        let family = crate::catalogue::find_family("fiber_column").unwrap();
         let so3 = family.find("so3", "newton_load", "force_based").unwrap();
         let found = s.search(so3);
         assert_eq!(found.value, Some(0.5), "{found:?}");
@@ -281,7 +281,7 @@ mod tests {
     }
 
     fn variant(integrator: &str, formulation: &str) -> &'static Variant {
-        crate::problem::find_family("flexible_beam")
+        crate::catalogue::find_family("flexible_beam")
             .unwrap()
             .find("none", integrator, formulation)
             .unwrap()

@@ -17,14 +17,11 @@
 //! chart of the body formulation (the quick tier: three distances, the Euler charts, `quat_proj`
 //! and `so3`, `rk4` at 1e-2 and `dop853` at 1e-8).
 
-/// The model families this part applies to (the rigid body: it varies its charts, springs
-/// and initial state).
-pub const FAMILIES: &[&str] = &["rigid_body"];
 use std::collections::BTreeMap;
 
 use nalgebra::Vector3;
 
-use super::{Part, StudyOptions};
+use crate::stability::{Part, StudyOptions};
 use crate::case::Case;
 use crate::math::so3;
 use crate::model::rigid_body::case::{AngularInit, RigidScene};
@@ -56,7 +53,7 @@ pub fn spin(d: f64) -> Vector3<f64> {
 /// Runs the ladder.
 pub fn study(
     cases: &[Case],
-    filter: &crate::suite::VariantFilter,
+    filter: &crate::selection::VariantFilter,
     opts: &StudyOptions,
 ) -> Result<Part, String> {
     use rayon::prelude::*;
@@ -73,7 +70,7 @@ pub fn study(
     };
     let narrowed;
     let filter = if opts.quick {
-        narrowed = super::narrowed(
+        narrowed = crate::stability::narrowed(
             filter,
             &["euler_xyz", "euler_zyx", "quat_proj", "so3"],
             &["rk4", "dop853"],
@@ -207,7 +204,7 @@ mod tests {
     use super::*;
 
     fn ladder(quick: bool) -> Part {
-        let cases = crate::case::embedded().unwrap();
+        let cases = crate::catalogue::embedded().unwrap();
         let opts = StudyOptions {
             quick,
             jobs: 2,
@@ -231,7 +228,7 @@ mod tests {
     /// so the exact scoring here is the stored reference's.
     #[test]
     fn generated_scene_matches_the_catalogue() {
-        let cases = crate::case::embedded().unwrap();
+        let cases = crate::catalogue::embedded().unwrap();
         let c = cases.iter().find(|c| c.name == CASE).unwrap();
         let mut s = c.scene(TEMPLATE).unwrap().clone();
         let w = spin(1e-2);

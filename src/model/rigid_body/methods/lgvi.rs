@@ -37,9 +37,9 @@
 use nalgebra::{Matrix3, UnitQuaternion, Vector3, Vector6};
 
 use super::body_momentum::{is_finite_state, omega_from_pi};
-use super::newton_stop::{NewtonStop, relative, update_norm};
+use crate::integrate::newton_stop::{NewtonStop, relative, update_norm};
 use super::own_state::{OwnState, So3State};
-use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
+use crate::integrate::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
 use crate::math::so3;
 use crate::model::rigid_body::RigidSystem;
 use crate::rotation::{Body, Pose, So3};

@@ -27,24 +27,22 @@
 //! the quantity exactly, so only round-off is left: the quadratic invariants of gni under the
 //! Gauss methods, and energy and momentum under `simo_wong`; `p ~ 1` there means the round-off
 //! is biased (a systematic rounding or a Newton iteration stopped short), which the Kahan
-//! variants (`integrate::compensated`) are there to expose.
+//! variants (`model::rigid_body::methods::compensated`) are there to expose.
 //!
 //! Runs go in parallel (rayon, `opts.jobs` threads) and are deterministic: records, fits and
 //! series do not depend on `jobs`, only `wall_s` (one run, timed under that load) does.
 
-/// The model families this part applies to (the rigid body: it varies its charts, springs
-/// and initial state).
-pub const FAMILIES: &[&str] = &["rigid_body"];
+use crate::model::rigid_body::Observation;
 use rayon::prelude::*;
 use std::sync::Arc;
 use std::time::Instant;
 
-use super::{Part, StudyOptions};
+use crate::stability::{Part, StudyOptions};
 use crate::case::Case;
 use crate::integrate::Limits;
-use crate::model::rigid_body::registry::{self, Setup, Variant};
+use crate::model::rigid_body::registry::{self, RigidSetup, Variant};
 use crate::run::{Observe, RunOutput};
-use crate::suite::VariantFilter;
+use crate::selection::VariantFilter;
 use crate::summary::{self, FitRecord, Record, RunKey, Wall};
 
 /// Number of log-spaced observation times.
@@ -205,7 +203,7 @@ pub fn fit_growth(t: &[f64], err: &[f64], decades: f64) -> Result<GrowthFit, Str
 /// The energy and momentum errors of a run at its samples: `(t, e_E, e_L)`; `e_L` is None when
 /// the body conserves no momentum component.
 pub fn errors(
-    out: &RunOutput,
+    out: &RunOutput<Observation>,
     body: &crate::model::rigid_body::RigidBody,
     energy_scale: f64,
 ) -> (Vec<f64>, Vec<f64>, Option<Vec<f64>>) {
@@ -234,7 +232,7 @@ struct Job {
     scene: String,
     inputs_sha256: String,
     energy_scale: f64,
-    setup: Setup,
+    setup: RigidSetup,
     dt: f64,
     steps: u64,
     variant: &'static Variant,
@@ -515,7 +513,7 @@ mod tests {
     /// series path, and the study is deterministic across thread counts.
     #[test]
     fn quick_tier_drift_and_bounded() {
-        let cases = crate::case::embedded().unwrap();
+        let cases = crate::catalogue::embedded().unwrap();
         let filter = VariantFilter {
             param: vec!["so3".into()],
             integrator: vec!["rk4".into(), "splitting".into()],
@@ -565,7 +563,7 @@ mod tests {
     #[test]
     #[ignore]
     fn print_table() {
-        let cases = crate::case::embedded().unwrap();
+        let cases = crate::catalogue::embedded().unwrap();
         let quick = std::env::var("LH_FULL").is_err();
         let mut filter = VariantFilter::default();
         if let Ok(f) = std::env::var("LH_FILTER") {

@@ -34,7 +34,7 @@ use nalgebra::{Matrix3, Quaternion, SymmetricEigen, UnitQuaternion, Vector3, Vec
 
 use super::body_momentum::{is_finite_state, omega_from_pi};
 use super::own_state::{OwnState, So3State};
-use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
+use crate::integrate::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
 use crate::model::rigid_body::{RigidBody, RigidSystem};
 use crate::rotation::{Body, So3};
 

@@ -36,9 +36,9 @@
 use nalgebra::{Matrix3, UnitQuaternion, Vector3, Vector6};
 use std::sync::Mutex;
 
-use super::newton_stop::{NewtonStop, relative, update_norm};
+use crate::integrate::newton_stop::{NewtonStop, relative, update_norm};
 use super::own_state::{OwnState, So3State};
-use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats, System};
+use crate::integrate::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats, System};
 use crate::math::so3;
 use crate::model::rigid_body::RigidSystem;
 use crate::rotation::{Body, Pose, So3};
