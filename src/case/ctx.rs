@@ -147,10 +147,11 @@ impl Ctx<'_> {
         Ok(Some(t.to_vec()))
     }
 
-    /// Refuses a `reference` kind the family cannot attach.
-    fn reference_kind(&self, family: &dyn super::CaseFamily, kind: ReferenceKind) -> Res<()> {
-        if family.references().contains(&kind) {
-            return Ok(());
+    /// The family's `reference` kind named `name`; any other name is refused, with the
+    /// family's kinds.
+    fn reference_kind(&self, family: &dyn super::CaseFamily, name: &str) -> Res<ReferenceKind> {
+        if let Some(k) = family.references().iter().find(|k| k.name() == name) {
+            return Ok(*k);
         }
         let kinds: Vec<String> = family
             .references()
@@ -160,8 +161,7 @@ impl Ctx<'_> {
         self.err(
             "reference",
             format!(
-                "`{}`; a {} case's references are {}",
-                kind.name(),
+                "`{name}`; a {} case's references are {}",
                 family.model(),
                 kinds.join(" or ")
             ),
@@ -191,7 +191,7 @@ impl Ctx<'_> {
                 ),
             );
         }
-        self.reference_kind(family, raw.reference)?;
+        let reference = self.reference_kind(family, &raw.reference)?;
         let energy_scale = self.positive("energy_scale", raw.energy_scale, "an energy in J")?;
         let max_steps = self.budget_key("max_steps", raw.max_steps, DEFAULT_MAX_STEPS)?;
         let max_rhs_evals =
@@ -259,7 +259,7 @@ impl Ctx<'_> {
             family,
             primary_metric: raw.primary_metric,
             energy_scale,
-            reference: raw.reference,
+            reference,
             max_steps,
             max_rhs_evals,
             max_adaptive_rhs_evals,

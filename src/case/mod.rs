@@ -40,7 +40,7 @@ use std::any::Any;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 
 pub mod budget;
 mod ctx;
@@ -134,29 +134,33 @@ impl fmt::Display for CaseError {
 
 impl std::error::Error for CaseError {}
 
-/// How a case's references are made.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ReferenceKind {
-    /// Integrated and stored under `references/` (cases/README.md, "References and how they are
-    /// checked").
-    Numerical,
-    /// A closed-form solution, evaluated at the score times by `mbdbench reference` and stored
-    /// under `references/` like a numerical one.
-    Exact,
-    /// A stored run of another program (OpenSees), made by a script kept beside it: `mbdbench
-    /// reference` verifies it (hash, schema, model) and says how to regenerate it.
-    External,
-}
+/// How a case's references are made: the case file's `reference` key. The kinds are open: the
+/// three below serve the built-in families, and a family may declare a kind of its own
+/// (`ReferenceKind::new("converged")` in its `problem::Family::references`); a case file may
+/// name only a kind its family declares (refused at load, by the key `reference`, with the
+/// family's kinds).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ReferenceKind(&'static str);
 
 impl ReferenceKind {
+    /// Integrated and stored under `references/` (cases/README.md, "References and how they are
+    /// checked").
+    pub const NUMERICAL: ReferenceKind = ReferenceKind("numerical");
+    /// A closed-form solution, evaluated at the score times by `mbdbench reference` and stored
+    /// under `references/` like a numerical one.
+    pub const EXACT: ReferenceKind = ReferenceKind("exact");
+    /// A stored run of another program (OpenSees), made by a script kept beside it: `mbdbench
+    /// reference` verifies it (hash, schema, model) and says how to regenerate it.
+    pub const EXTERNAL: ReferenceKind = ReferenceKind("external");
+
+    /// A family's own kind, spelled `name` in its case files (snake_case).
+    pub const fn new(name: &'static str) -> ReferenceKind {
+        ReferenceKind(name)
+    }
+
     /// Its spelling in a case file.
     pub fn name(self) -> &'static str {
-        match self {
-            ReferenceKind::Numerical => "numerical",
-            ReferenceKind::Exact => "exact",
-            ReferenceKind::External => "external",
-        }
+        self.0
     }
 }
 

@@ -5,7 +5,7 @@
 //! `deny_unknown_fields` everywhere so that a misspelt key is an error naming it.
 use serde::Deserialize;
 
-use super::{RawGate, RawLadders, ReferenceKind};
+use super::{RawGate, RawLadders};
 
 /// `[stability]` as written.
 #[derive(Deserialize)]
@@ -32,7 +32,8 @@ pub struct RawShared {
     pub title: String,
     pub primary_metric: String,
     pub energy_scale: f64,
-    pub reference: ReferenceKind,
+    /// As written; resolved against the family's kinds by `Ctx::assemble`.
+    pub reference: String,
     pub max_steps: Option<f64>,
     pub max_rhs_evals: Option<f64>,
     pub max_adaptive_rhs_evals: Option<f64>,
@@ -90,7 +91,7 @@ macro_rules! case_schema {
             model: String,
             primary_metric: String,
             energy_scale: f64,
-            reference: $crate::case::ReferenceKind,
+            reference: String,
             max_steps: Option<f64>,
             max_rhs_evals: Option<f64>,
             max_adaptive_rhs_evals: Option<f64>,

@@ -110,10 +110,10 @@ fn embedded_files_load() {
             "tumble"
         ]
     );
-    assert_eq!(g.reference, ReferenceKind::Exact);
-    assert_eq!(by("free_body").reference, ReferenceKind::Exact);
-    assert_eq!(by("heavy_top").reference, ReferenceKind::Numerical);
-    assert_eq!(by("nine_spring").reference, ReferenceKind::Numerical);
+    assert_eq!(g.reference, ReferenceKind::EXACT);
+    assert_eq!(by("free_body").reference, ReferenceKind::EXACT);
+    assert_eq!(by("heavy_top").reference, ReferenceKind::NUMERICAL);
+    assert_eq!(by("nine_spring").reference, ReferenceKind::NUMERICAL);
     let spin = g.scene("spin_d1e-2").unwrap();
     assert!(spin.ladders.order2_4.iter().any(|f| f.dt == 1.0e-2));
     assert!(spin.ladders.tol.contains(&1.0e-8) && spin.ladders.tol.contains(&1.0e-10));
@@ -307,7 +307,10 @@ fn wrong_type() {
     );
     error_at(&edited("schema = 1", "schema = 1.0"), "schema");
     let e = error_at(&edited("\"numerical\"", "\"stored\""), "reference");
-    assert!(e.message.contains("`numerical`, `exact`"), "{e}");
+    assert!(
+        e.message.contains("`stored`") && e.message.contains("`numerical` or `exact`"),
+        "{e}"
+    );
 }
 
 // A missing required key is named, and a TOML syntax error gives file and line.

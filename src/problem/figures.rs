@@ -219,6 +219,11 @@ pub struct Figures {
     /// seconds for a dynamic scene (`seconds`); a static scene's load factor or a cyclic
     /// protocol's increments are not seconds, and their family says so.
     pub t_axis: fn(&crate::case::Scene) -> (&'static str, &'static str),
+    /// The colours (RGB) of the family's integrators in every plot, by name. A name another
+    /// family declared before it in the table keeps that family's colour (so a shared method
+    /// looks the same in every family); a name no family declares (a method registered at
+    /// run time) gets a colour derived from its name (`report::style::colour`).
+    pub colours: &'static [(&'static str, [u8; 3])],
 }
 
 /// `t` is time in seconds: `("t (s)", "step dt (s)")`.

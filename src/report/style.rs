@@ -25,43 +25,6 @@ use plotters::style::RGBColor;
 use crate::catalogue::axis_position;
 use crate::problem::Axis;
 
-/// The integrator colours, in `axis_names(Axis::Integrator)` order.
-const INTEGRATOR_COLOURS: [RGBColor; 25] = [
-    RGBColor(127, 127, 127), // euler: grey
-    RGBColor(31, 119, 180),  // rk4: blue
-    RGBColor(255, 127, 14),  // dopri5: orange
-    RGBColor(214, 39, 40),   // dop853: red
-    RGBColor(44, 160, 44),   // implicit_midpoint: green
-    RGBColor(148, 103, 189), // gauss6: purple
-    RGBColor(140, 86, 75),   // lie_euler: brown
-    RGBColor(227, 119, 194), // cg3: pink
-    RGBColor(23, 190, 207),  // splitting: cyan
-    RGBColor(188, 189, 34),  // lgvi: olive
-    RGBColor(0, 0, 0),       // simo_wong: black
-    RGBColor(57, 59, 121),   // lie_gen_alpha: indigo
-    RGBColor(0, 100, 100),   // implicit_midpoint_kahan: dark teal
-    RGBColor(120, 60, 0),    // gauss6_kahan: dark brown
-    RGBColor(0, 90, 75),     // simo_wong_kahan: dark sea green
-    RGBColor(120, 105, 0),   // newmark (flexible beam): dark olive
-    RGBColor(200, 0, 120),   // hht: magenta
-    RGBColor(0, 170, 170),   // gen_alpha: teal
-    RGBColor(0, 40, 140),    // gen_alpha_i3: navy
-    RGBColor(230, 140, 0),   // newton_load (fiber column): amber
-    RGBColor(30, 110, 220),  // newton_disp: blue
-    RGBColor(0, 20, 0),      // newton_disp_ls: near black
-    RGBColor(220, 40, 40),   // newton_disp_krylov: red
-    RGBColor(60, 160, 60),   // midpoint (fiber column): green
-    RGBColor(0, 255, 127),   // the next registered method (the seam test's): spring green
-];
-
-/// Extra colours for integrators past the palette.
-const SPARE_COLOURS: [RGBColor; 4] = [
-    RGBColor(255, 187, 120),
-    RGBColor(152, 223, 138),
-    RGBColor(197, 176, 213),
-    RGBColor(196, 156, 148),
-];
-
 /// A marker shape.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Marker {
@@ -104,15 +67,42 @@ fn hash(name: &str) -> usize {
     h as usize
 }
 
-/// The colour of an integrator (ink for a plot's reference line).
+/// The colour of an integrator (ink for a plot's reference line): the colour the first family
+/// in the table declaring it gives it (`problem::figures::Figures::colours`), else one derived
+/// from its name ([`name_colour`]).
 pub fn colour(integrator: &str) -> RGBColor {
     if integrator == super::timeseries::REFERENCE {
         return INK;
     }
-    match axis_position(Axis::Integrator, integrator) {
-        i if i < INTEGRATOR_COLOURS.len() => INTEGRATOR_COLOURS[i],
-        _ => SPARE_COLOURS[hash(integrator) % SPARE_COLOURS.len()],
-    }
+    crate::catalogue::FAMILIES
+        .iter()
+        .flat_map(|f| f.figures.colours)
+        .find(|(n, _)| *n == integrator)
+        .map_or_else(
+            || name_colour(integrator),
+            |(_, [r, g, b])| RGBColor(*r, *g, *b),
+        )
+}
+
+/// A colour of its own for a name no family declares (a method a user registers): a hue from
+/// the name's hash (FNV-1a, the same on every machine and run), at a saturation and lightness
+/// that read on white (HSL 0.65, 0.42).
+pub fn name_colour(name: &str) -> RGBColor {
+    let hue = (hash(name) % 360) as f64;
+    let (s, l) = (0.65, 0.42);
+    let c = (1.0 - (2.0 * l - 1.0_f64).abs()) * s;
+    let x = c * (1.0 - ((hue / 60.0) % 2.0 - 1.0).abs());
+    let (r, g, b) = match (hue / 60.0) as u32 {
+        0 => (c, x, 0.0),
+        1 => (x, c, 0.0),
+        2 => (0.0, c, x),
+        3 => (0.0, x, c),
+        4 => (x, 0.0, c),
+        _ => (c, 0.0, x),
+    };
+    let m = l - c / 2.0;
+    let byte = |v: f64| ((v + m) * 255.0).round().clamp(0.0, 255.0) as u8;
+    RGBColor(byte(r), byte(g), byte(b))
 }
 
 /// The marker of a parameterization.
@@ -339,12 +329,36 @@ mod tests {
         }
     }
 
+    /// Every integrator a family registers has a colour its family (or an earlier one)
+    /// declares, and a name no family declares gets a colour of its own from its name alone:
+    /// the same on every call, distinct for two names, never the ink of reference lines.
+    #[test]
+    fn colours_are_declared_by_name() {
+        for f in crate::catalogue::FAMILIES {
+            for i in f.axes.integrators {
+                assert!(
+                    crate::catalogue::FAMILIES.iter().any(|g| g
+                        .figures
+                        .colours
+                        .iter()
+                        .any(|(n, _)| n == i)),
+                    "{}: no family declares a colour for `{i}`",
+                    f.model
+                );
+            }
+        }
+        let (a, b) = (colour("my_users_method"), colour("another_method"));
+        assert_eq!(a, name_colour("my_users_method"));
+        assert_eq!(a, colour("my_users_method"));
+        assert_ne!(a, b);
+        assert_ne!(a, INK);
+    }
+
     /// Every registered integrator has its own colour and every parameterization its own marker.
     #[test]
     fn distinct_encodings() {
         let cs: Vec<_> = axis_names(Axis::Integrator)
             .iter()
-            .take(INTEGRATOR_COLOURS.len())
             .map(|i| colour(i))
             .collect();
         for (i, a) in cs.iter().enumerate() {

@@ -723,7 +723,7 @@ fn base(dir: &Path) -> Base {
             text,
             name: c.name.clone(),
             scenes,
-            external: c.reference == mbdbench::case::ReferenceKind::External,
+            external: c.reference == mbdbench::case::ReferenceKind::EXTERNAL,
         });
     }
     let references = stored_references(&manifest.join("references"), &cases);

@@ -534,7 +534,7 @@ fn loading(cx: &Ctx, i: usize, l: &RawLoad, h: f64) -> Res<Loading> {
 
 fn scene_physics(
     cx: &Ctx,
-    (i, grid_t_end, reference): (usize, f64, ReferenceKind),
+    (i, grid_t_end, reference): (usize, f64, &str),
     s: &SceneOwn,
     c: &ColumnCase,
 ) -> Res<ColumnScene> {
@@ -542,15 +542,15 @@ fn scene_physics(
     // A static scene is scored against the exact elastica, a cyclic or pulse scene against
     // OpenSees' run: the case's `reference` must say which.
     let wanted = match loading.kind() {
-        "static" => ReferenceKind::Exact,
-        _ => ReferenceKind::External,
+        "static" => ReferenceKind::EXACT,
+        _ => ReferenceKind::EXTERNAL,
     };
-    if reference != wanted {
+    if reference != wanted.name() {
         return cx.err(
             "reference",
             format!(
                 "`{}`, but scene[{i}] is {} ({} loading), whose reference is `{}`",
-                reference.name(),
+                reference,
                 loading.kind(),
                 loading.kind(),
                 wanted.name()
@@ -605,14 +605,14 @@ pub fn load(file: &str, text: &str) -> Result<Case, CaseError> {
     let raw: RawCase = crate::case::parse(file, text)?;
     let (shared, own, scenes) = raw.split();
     let t_ends: Vec<f64> = scenes.iter().map(|(g, _)| g.t_end).collect();
-    let reference = shared.reference;
+    let reference = shared.reference.clone();
     Ctx { file }.assemble(
         &super::family::FAMILY,
         shared,
         |cx| case_physics(cx, &own),
         scenes,
         |cx, i, s: &SceneOwn, c: &ColumnCase| {
-            scene_physics(cx, (i, t_ends[i], reference), s, c)
+            scene_physics(cx, (i, t_ends[i], &reference), s, c)
         },
     )
 }

@@ -127,6 +127,14 @@ const FIGURES: Figures = Figures {
     draw_failed: false,
     physical: None,
     t_axis,
+    // newmark, hht and gen_alpha keep the beam's colours.
+    colours: &[
+        ("newton_load", [230, 140, 0]),        // amber
+        ("newton_disp", [30, 110, 220]),       // blue
+        ("newton_disp_ls", [0, 20, 0]),        // near black
+        ("newton_disp_krylov", [220, 40, 40]), // red
+        ("midpoint", [60, 160, 60]),           // green
+    ],
 };
 
 const fn metric(name: &'static str, unit: &'static str, reference_error: bool) -> Metric {
@@ -226,7 +234,7 @@ pub static FAMILY: Family = Family {
     stability_quick: &["newmark", "hht", "gen_alpha", "midpoint", "newton_load"],
     study: None,
     // Its references: the static scenes' elastica (exact), the cyclic and pulse scenes' OpenSees runs (external).
-    references: &[crate::case::ReferenceKind::Exact, crate::case::ReferenceKind::External],
+    references: &[crate::case::ReferenceKind::EXACT, crate::case::ReferenceKind::EXTERNAL],
 };
 
 fn static_na_reason(param: &str, integrator: &str, formulation: &str) -> String {

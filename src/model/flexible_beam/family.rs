@@ -126,6 +126,13 @@ const FIGURES: Figures = Figures {
         claim_margin: 10.0,
     }),
     t_axis: crate::problem::figures::seconds,
+    // The rigid body's methods keep their colours; these are the beam's own.
+    colours: &[
+        ("newmark", [120, 105, 0]),    // dark olive
+        ("hht", [200, 0, 120]),        // magenta
+        ("gen_alpha", [0, 170, 170]),  // teal
+        ("gen_alpha_i3", [0, 40, 140]), // navy
+    ],
 };
 
 const fn metric(name: &'static str, unit: &'static str, reference_error: bool) -> Metric {
@@ -204,7 +211,7 @@ pub static FAMILY: Family = Family {
     stability_quick: &["rk4", "newmark", "implicit_midpoint", "gen_alpha_i3"],
     study: None,
     // Its references: `fe_exact` integrated by `mbdbench reference` (numerical).
-    references: &[crate::case::ReferenceKind::Numerical],
+    references: &[crate::case::ReferenceKind::NUMERICAL],
 };
 
 /// The formulations, in report order.

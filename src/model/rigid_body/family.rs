@@ -30,7 +30,7 @@ pub static FAMILY: Family = Family {
     stability_quick: &[],
     study: Some(super::stability::study),
     // Its references: integrated by `mbdbench reference` (numerical) or the torque-free closed form (exact).
-    references: &[crate::case::ReferenceKind::Numerical, crate::case::ReferenceKind::Exact],
+    references: &[crate::case::ReferenceKind::NUMERICAL, crate::case::ReferenceKind::EXACT],
 };
 
 /// The metrics of rigid-body cases (cases/README.md, "Rigid-body metrics").
@@ -158,7 +158,7 @@ fn estimate(case: &Case, scene: &Scene) -> Estimate {
     let Some(c) = super::case::RigidCase::of(case) else {
         return e;
     };
-    if case.reference != ReferenceKind::Numerical {
+    if case.reference != ReferenceKind::NUMERICAL {
         return e;
     }
     let grid = crate::run::Grid {

@@ -108,4 +108,21 @@ pub const FIGURES: Figures = Figures {
     draw_failed: false,
     physical: None,
     t_axis: crate::problem::figures::seconds,
+    colours: &[
+        ("euler", [127, 127, 127]),                 // grey
+        ("rk4", [31, 119, 180]),                    // blue
+        ("dopri5", [255, 127, 14]),                 // orange
+        ("dop853", [214, 39, 40]),                  // red
+        ("implicit_midpoint", [44, 160, 44]),       // green
+        ("gauss6", [148, 103, 189]),                // purple
+        ("lie_euler", [140, 86, 75]),               // brown
+        ("cg3", [227, 119, 194]),                   // pink
+        ("splitting", [23, 190, 207]),              // cyan
+        ("lgvi", [188, 189, 34]),                   // olive
+        ("simo_wong", [0, 0, 0]),                   // black
+        ("lie_gen_alpha", [57, 59, 121]),           // indigo
+        ("implicit_midpoint_kahan", [0, 100, 100]), // dark teal
+        ("gauss6_kahan", [120, 60, 0]),             // dark brown
+        ("simo_wong_kahan", [0, 90, 75]),           // dark sea green
+    ],
 };

@@ -73,15 +73,10 @@ pub fn reference_step(grid: &Grid, pivoted: bool) -> f64 {
 /// Chooses how the primary reference of a scene is computed.
 pub fn primary_for(kind: ReferenceKind, plan: &ScenePlan) -> Result<Primary, String> {
     match kind {
-        ReferenceKind::Numerical => Ok(Primary::Gauss6 {
+        ReferenceKind::NUMERICAL => Ok(Primary::Gauss6 {
             dt: fine_step(&plan.setup.grid, numerical_step(&plan.setup.body)),
         }),
-        ReferenceKind::External => Err(format!(
-            "{}/{}: the rigid body computes its references; `reference = \"external\"` is \
-             for a stored run of another program",
-            plan.case, plan.scene
-        )),
-        ReferenceKind::Exact => {
+        ReferenceKind::EXACT => {
             let b = &plan.setup.body;
             if !b.springs.is_empty() || b.gravity.is_some() || b.pivot_com.is_some() {
                 return Err(format!(
@@ -103,6 +98,13 @@ pub fn primary_for(kind: ReferenceKind, plan: &ScenePlan) -> Result<Primary, Str
                 Ok(Primary::EllipticTorqueFree)
             }
         }
+        other => Err(format!(
+            "{}/{}: the rigid body computes its references; `reference = \"{}\"` is not one \
+             of its kinds (numerical, exact)",
+            plan.case,
+            plan.scene,
+            other.name()
+        )),
     }
 }
 
@@ -197,18 +199,21 @@ pub const CROSS_STEP_EXACT: f64 = 1e-3;
 /// The independent cross-check run and its description.
 fn cross_track(kind: ReferenceKind, plan: &ScenePlan) -> Result<(Track, String), String> {
     match kind {
-        ReferenceKind::Numerical => Ok((
+        ReferenceKind::NUMERICAL => Ok((
             run_track(&plan.setup, "quat_proj", "dop853", "spatial", CROSS_TOL)?,
             format!("dop853/quat_proj/spatial, tol {CROSS_TOL:e}"),
         )),
-        ReferenceKind::External => Err("no cross-check for an external reference".into()),
-        ReferenceKind::Exact => {
+        ReferenceKind::EXACT => {
             let h = fine_step(&plan.setup.grid, CROSS_STEP_EXACT);
             Ok((
                 run_track(&plan.setup, "quat_proj", "gauss6", "spatial", h)?,
                 format!("gauss6/quat_proj/spatial, dt {h:e}"),
             ))
         }
+        other => Err(format!(
+            "no cross-check for a `{}` reference: the rigid body's are numerical or exact",
+            other.name()
+        )),
     }
 }
 

@@ -37,6 +37,7 @@ const FIGURES: Figures = Figures {
     draw_failed: false,
     physical: None,
     t_axis: crate::problem::figures::seconds,
+    colours: &[("stormer_verlet", [0, 255, 127])], // spring green
 };
 
 /// The spring-chain family.
@@ -101,7 +102,7 @@ pub static FAMILY: Family = Family {
     stability_quick: &["rk4"],
     study: None,
     // Its references: the chain's closed form (exact).
-    references: &[crate::case::ReferenceKind::Exact],
+    references: &[crate::case::ReferenceKind::EXACT],
 };
 
 /// A monomorphised run.

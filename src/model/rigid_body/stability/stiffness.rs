@@ -135,7 +135,12 @@ pub fn fits(records: &[Record], exps: &[i32]) -> Vec<FitRecord> {
             )
         })
         .collect();
-    keys.sort_by_key(|k| crate::catalogue::variant_order(k.0, k.1, k.2));
+    // The family's own axis order (the report's, as the rigid body comes first in the table).
+    let at = |list: &[&str], x: &str| list.iter().position(|y| *y == x).unwrap_or(usize::MAX);
+    keys.sort_by_key(|k| {
+        use crate::model::rigid_body::registry::{FORMULATIONS, INTEGRATORS, PARAMS};
+        [at(PARAMS, k.0), at(INTEGRATORS, k.1), at(FORMULATIONS, k.2)]
+    });
     keys.dedup();
     let mut out = vec![];
     for (param, integ, form) in keys {
