@@ -21,6 +21,4 @@ families! {
     rigid_body,
     flexible_beam,
     fiber_column,
-    #[cfg(any(test, feature = "seam-test"))]
-    spring_chain,
 }
