@@ -21,4 +21,6 @@ families! {
     rigid_body,
     flexible_beam,
     fiber_column,
+    #[cfg(any(test, feature = "seam-test"))]
+    spring_chain,
 }
