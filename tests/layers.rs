@@ -123,9 +123,9 @@ fn strip_test_modules(code: &str) -> (String, Vec<String>) {
             .collect();
         let tail = &decl[name.len()..];
         let tail_trim = tail.trim_start();
-        if tail_trim.starts_with(';') {
+        if let Some(after_decl) = tail_trim.strip_prefix(';') {
             test_files.push(name);
-            rest = &tail_trim[1..];
+            rest = after_decl;
         } else if tail_trim.starts_with('{') {
             let mut depth = 0usize;
             let mut end = tail_trim.len();
