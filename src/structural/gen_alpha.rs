@@ -132,6 +132,22 @@ impl Coefficients {
             beta: (1.0 - alpha_m + alpha_f).powi(2) / 4.0,
         })
     }
+
+    /// HHT-alpha as a member of the family (Hilber, Hughes & Taylor 1977): `alpha_m = 0`,
+    /// `alpha_f = -alpha`, `beta = (1 - alpha)^2 / 4`, `gamma = 1/2 - alpha`, for `alpha` in
+    /// `[-1/3, 0]` (`rho_inf = (1 + alpha) / (1 - alpha)`); an error names `method`.
+    pub fn hht(alpha: f64, method: &str) -> Result<Coefficients, String> {
+        if !(alpha.is_finite() && (-1.0 / 3.0..=0.0).contains(&alpha)) {
+            return Err(format!("{method} alpha = {alpha} must be in [-1/3, 0]"));
+        }
+        Ok(Coefficients {
+            rho_inf: (1.0 + alpha) / (1.0 - alpha),
+            alpha_m: 0.0,
+            alpha_f: -alpha,
+            beta: (1.0 - alpha).powi(2) / 4.0,
+            gamma: 0.5 - alpha,
+        })
+    }
 }
 
 impl GenAlpha {
@@ -217,6 +233,25 @@ impl GenAlpha {
 mod tests {
     use super::super::test_support::*;
     use super::*;
+
+    /// HHT is the member of the family with `alpha_m = 0`, `alpha_f = -alpha`: the
+    /// coefficients `Hht` and the fiber column's dynamic schemes use, with `rho_inf =
+    /// (1 + alpha)/(1 - alpha)`; a bad `alpha` is an error naming it.
+    #[test]
+    fn hht_is_the_family_member_with_alpha_m_zero() {
+        for alpha in [0.0, -0.05, -0.3, -1.0 / 3.0] {
+            let c = Coefficients::hht(alpha, "hht").unwrap();
+            let h = crate::structural::hht::Hht::new(alpha, NewtonOptions::default()).unwrap();
+            assert_eq!(
+                (c.alpha_f, c.beta, c.gamma),
+                (-h.parameters().0, h.parameters().1, h.parameters().2)
+            );
+            assert_eq!(c.alpha_m, 0.0);
+            assert!((c.rho_inf - (1.0 + alpha) / (1.0 - alpha)).abs() < 1e-15);
+        }
+        let e = Coefficients::hht(0.1, "hht").unwrap_err();
+        assert!(e.contains("alpha = 0.1"), "{e}");
+    }
 
     /// The measured spectral radius at `h omega = 1e4` is `rho_inf`, across the range. The
     /// amplification matrix at infinity has the triple eigenvalue `-rho_inf` (a Jordan

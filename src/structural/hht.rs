@@ -100,14 +100,12 @@ impl Default for Hht {
 impl Hht {
     /// The method for `alpha` in `[-1/3, 0]`; an error names a bad `alpha` or Newton option.
     pub fn new(alpha: f64, newton: NewtonOptions) -> Result<Self, String> {
-        if !(alpha.is_finite() && (-1.0 / 3.0..=0.0).contains(&alpha)) {
-            return Err(format!("hht alpha = {alpha} must be in [-1/3, 0]"));
-        }
+        let c = super::gen_alpha::Coefficients::hht(alpha, "hht")?;
         newton.validate()?;
         Ok(Hht {
             alpha,
-            beta: (1.0 - alpha).powi(2) / 4.0,
-            gamma: 0.5 - alpha,
+            beta: c.beta,
+            gamma: c.gamma,
             newton,
         })
     }

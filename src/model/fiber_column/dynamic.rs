@@ -72,6 +72,7 @@
 use nalgebra::{DMatrix, DVector, Vector3};
 
 use super::chart::RotationChart;
+use crate::structural::gen_alpha::Coefficients;
 use super::column::{Algorithm, Column, Inertia, NewtonFailure, StepCount};
 
 /// The time-integration scheme.
@@ -203,18 +204,14 @@ impl<C: RotationChart> Dynamic<C> {
         }
         let params = match scheme {
             Scheme::Newmark => (0.0, 0.0, 0.25, 0.5),
+            // The one derivation of the family's coefficients (`structural::gen_alpha`).
             Scheme::Hht { alpha } => {
-                if !(-1.0 / 3.0..=0.0).contains(&alpha) {
-                    return Err(format!("HHT alpha {alpha} outside [-1/3, 0]"));
-                }
-                (0.0, -alpha, 0.25 * (1.0 - alpha).powi(2), 0.5 - alpha)
+                let c = Coefficients::hht(alpha, "hht")?;
+                (c.alpha_m, c.alpha_f, c.beta, c.gamma)
             }
-            Scheme::GenAlpha { rho_inf: rho } => {
-                if !(0.0..=1.0).contains(&rho) {
-                    return Err(format!("rho_inf {rho} outside [0, 1]"));
-                }
-                let (am, af) = ((2.0 * rho - 1.0) / (rho + 1.0), rho / (rho + 1.0));
-                (am, af, 0.25 * (1.0 - am + af).powi(2), 0.5 - am + af)
+            Scheme::GenAlpha { rho_inf } => {
+                let c = Coefficients::new(rho_inf, "gen_alpha")?;
+                (c.alpha_m, c.alpha_f, c.beta, c.gamma)
             }
             Scheme::Midpoint => (0.5, 0.5, 0.25, 0.5),
         };

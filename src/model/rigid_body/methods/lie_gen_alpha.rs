@@ -95,19 +95,14 @@ impl Default for LieGenAlpha {
 impl LieGenAlpha {
     /// The method with spectral radius at infinity `rho_inf` in `[0, 1]` (None otherwise).
     pub fn new(rho_inf: f64) -> Option<Self> {
-        if !(0.0..=1.0).contains(&rho_inf) {
-            return None;
-        }
-        let alpha_m = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
-        let alpha_f = rho_inf / (rho_inf + 1.0);
-        let gamma = 0.5 + alpha_f - alpha_m;
-        let beta = 0.25 * (gamma + 0.5).powi(2);
+        // The one derivation of the coefficients (Chung & Hulbert; `structural::gen_alpha`).
+        let c = crate::structural::gen_alpha::Coefficients::new(rho_inf, "lie_gen_alpha").ok()?;
         Some(LieGenAlpha {
             rho_inf,
-            alpha_m,
-            alpha_f,
-            gamma,
-            beta,
+            alpha_m: c.alpha_m,
+            alpha_f: c.alpha_f,
+            gamma: c.gamma,
+            beta: c.beta,
             name: intern(lie_gen_alpha_name(rho_inf)),
             wdot: Vector6::zeros(),
             a: Vector6::zeros(),
@@ -259,6 +254,10 @@ mod tests {
             (g - (0.5 + af - am)).abs() < 1e-15 && (bt - 0.25 * (g + 0.5).powi(2)).abs() < 1e-15
         );
         assert_eq!(FixedStep::<ts::Sys>::info(&m).name, "lie_gen_alpha");
+        // Its coefficients are the family's one derivation (`structural::gen_alpha`).
+        let c = crate::structural::gen_alpha::Coefficients::new(0.9, "x").unwrap();
+        let m9 = LieGenAlpha::new(0.9).unwrap();
+        assert_eq!(m9.parameters(), (c.alpha_m, c.alpha_f, c.gamma, c.beta));
         let m = LieGenAlpha::new(0.5).unwrap();
         assert_eq!(FixedStep::<ts::Sys>::info(&m).name, "lie_gen_alpha_r05");
         assert_eq!(lie_gen_alpha_name(0.0), "lie_gen_alpha_r00");
