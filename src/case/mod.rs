@@ -262,7 +262,7 @@ pub struct Case {
 #[derive(Debug, Clone, PartialEq)]
 pub struct StabilitySpec {
     /// The horizon `t_h` in periods of the scene's fastest linearised mode
-    /// (`model::linear_modes`) or first elastic mode (the seam's search); required for scenes
+    /// (`model::rigid_body::linear_modes`) or first elastic mode (the seam's search); required for scenes
     /// stepped in time, unused by load paths (a static scene's search spans its whole path).
     pub periods: Option<f64>,
     /// rad: the accuracy bound of `largest_accurate_dt` (max geodesic rotation error over the

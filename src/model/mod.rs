@@ -1,9 +1,6 @@
 //! Physical models. Each model family is a folder here, plugged into the suite by one line of
 //! the `families!` list below, which declares its module and its entry in the family table
-//! (`catalogue::FAMILIES`, in report order); `linear_modes` and `torque_free` serve the rigid
-//! body (its stability study and exact references).
-pub mod linear_modes;
-pub mod torque_free;
+//! (`catalogue::FAMILIES`, in report order).
 
 /// Declares each family's module and the family table from one list of folder names (each
 /// folder has `family::FAMILY`); an attribute on a line (a `cfg`) applies to both.

@@ -21,6 +21,7 @@ pub mod baseline;
 pub mod case;
 pub mod family;
 pub mod figures;
+pub mod linear_modes;
 pub mod methods;
 pub mod momentum_drift;
 pub mod plan;
@@ -30,6 +31,7 @@ pub mod refgen;
 pub mod registry;
 pub mod score;
 pub mod stability;
+pub mod torque_free;
 pub mod trajectory_error;
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3, Vector6};

@@ -7,7 +7,7 @@
 //!   parameterization *and* formulation.
 //! - Exact references (`reference = "exact"`: gimbal_lock, free_body): the matrix exponential
 //!   for a spherical body's constant spin, the Jacobi-elliptic Euler-Poinsot solution
-//!   otherwise (`model::torque_free`), cross-checked by the same numerical run as above.
+//!   otherwise (`model::rigid_body::torque_free`), cross-checked by the same numerical run as above.
 //!
 //! The accuracy claim is, per quantity, the larger of the cross-check difference and the
 //! reference's own energy error. `--check` recomputes the primary trajectory and the cross-check,
@@ -18,7 +18,7 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use crate::case::ReferenceKind;
 use crate::math::so3;
 use crate::model::rigid_body::{Observation, RigidBody};
-use crate::model::torque_free::{TorqueFreeExact, spin_exact};
+use crate::model::rigid_body::torque_free::{TorqueFreeExact, spin_exact};
 
 use super::reference::{AccuracyClaim, CrossCheck, Provenance, Reference};
 use crate::model::rigid_body::registry::{self, RigidSetup};

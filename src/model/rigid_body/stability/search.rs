@@ -1,7 +1,7 @@
 //! The largest stable and the largest accurate step of a variant on a scene.
 //!
 //! Horizon: `t_h` = `[stability].periods` periods of the scene's fastest linearised mode
-//! (`model::linear_modes`). A fixed-step variant is probed with `n` steps of `dt = t_h / n`
+//! (`model::rigid_body::linear_modes`). A fixed-step variant is probed with `n` steps of `dt = t_h / n`
 //! (integer step counts, so every probe is deterministic and lands on `t_h`), observed at
 //! `SCORE_POINTS` score times `k_j = floor(j n / M)` (every step when `n < M`). A probe is
 //! - *stable* when the run ends without a typed failure and, at every score time, the state
@@ -42,7 +42,7 @@ use crate::stability::steps::{
     CAP_STEPS, Found, Limit, Probe, QUICK_MAX_STEPS, TOL_CAP, TOL_FLOOR, Verdict, metric_names,
     probe_limits, search_steps, search_tol,
 };
-use crate::model::linear_modes;
+use crate::model::rigid_body::linear_modes;
 use crate::model::rigid_body::plan::ScenePlan;
 use crate::model::rigid_body::registry::{self, Variant};
 use crate::run::{Observe, RunOutput, Sample};

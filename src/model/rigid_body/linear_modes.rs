@@ -21,7 +21,7 @@
 //! `x = 0, R = I`, which need not be an equilibrium.
 use nalgebra::{Matrix3, Matrix6, SymmetricEigen, Vector3, Vector6};
 
-use super::rigid_body::{Observation, RigidBody};
+use super::{Observation, RigidBody};
 use crate::math::so3;
 
 /// Central-difference step of the tangent stiffness (m, rad).
