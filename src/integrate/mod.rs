@@ -25,7 +25,6 @@ pub mod explicit_rk;
 pub mod implicit_rk;
 pub mod lgvi;
 pub mod lie_gen_alpha;
-pub mod linalg;
 pub mod lu6;
 mod newton_stop;
 mod own_state;
