@@ -53,6 +53,19 @@ fn tamper(root: &Path, f: impl Fn(&mut Value)) {
 /// An edit of a record.
 type Tamper = Box<dyn Fn(&mut Value)>;
 
+/// Each edit, re-hashed into the manifest of the copy `copied_root(tag)` made, is refused with
+/// an error naming the record and containing its expected text; the copy is put back after
+/// each.
+fn refused_by_key(root: &Path, tag: &str, cases: Vec<(&str, Tamper)>) {
+    for (want, f) in cases {
+        tamper(root, f);
+        let e = load(root, 5.0).err().unwrap_or_else(|| panic!("accepted: {want}"));
+        assert!(e.contains(&format!("{SCENE}.json: ")), "{e}");
+        assert!(e.contains(want), "{e}\nwanted: {want}");
+        restore(root, tag);
+    }
+}
+
 /// Puts the stored folder back in `root`, the copy `copied_root(tag)` made.
 fn restore(root: &Path, tag: &str) {
     assert_eq!(copied_root(tag), root);
@@ -192,13 +205,7 @@ fn malformed_records_are_refused_by_key() {
             Box::new(|f| f["half_increment"]["peak_abs"]["base_shear"] = json!(1.0)),
         ),
     ];
-    for (want, f) in cases {
-        tamper(&root, f);
-        let e = load(&root, 5.0).err().unwrap_or_else(|| panic!("accepted: {want}"));
-        assert!(e.contains(&format!("{SCENE}.json: ")), "{e}");
-        assert!(e.contains(want), "{e}\nwanted: {want}");
-        restore(&root, "record");
-    }
+    refused_by_key(&root, "record", cases);
     let _ = std::fs::remove_dir_all(&root);
 }
 
@@ -249,13 +256,7 @@ fn malformed_provenance_is_refused_by_key() {
             Box::new(|f| f["provenance"]["command"] = json!("python generate.py")),
         ),
     ];
-    for (want, f) in cases {
-        tamper(&root, f);
-        let e = load(&root, 5.0).err().unwrap_or_else(|| panic!("accepted: {want}"));
-        assert!(e.contains(&format!("{SCENE}.json: ")), "{e}");
-        assert!(e.contains(want), "{e}\nwanted: {want}");
-        restore(&root, "provenance");
-    }
+    refused_by_key(&root, "provenance", cases);
     let e = load(&root, 5.0).unwrap();
     assert_eq!(e.track.t.len(), 5880 / 5 + 1, "the stored block passes");
     let _ = std::fs::remove_dir_all(&root);
