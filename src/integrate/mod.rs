@@ -25,7 +25,6 @@ pub mod adaptive_rk;
 pub mod crouch_grossman;
 pub mod explicit_rk;
 pub mod implicit_rk;
-pub mod linalg;
 pub mod lu6;
 pub(crate) mod newton_stop;
 #[cfg(test)]

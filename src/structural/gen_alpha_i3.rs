@@ -48,6 +48,7 @@ use super::Constraints;
 use super::newton::{self, NewtonOptions, check_finite, lu_failure, ratio};
 use super::state::State;
 use crate::integrate::{Failure, MethodInfo, Stats};
+use crate::math::lu::LinearSolve;
 
 /// The index-3 generalized-alpha method for constrained systems.
 ///

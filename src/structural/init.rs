@@ -43,6 +43,7 @@ use super::newton::lu_failure;
 use super::state::State;
 use super::{Constraints, SecondOrder};
 use crate::integrate::{Failure, Stats};
+use crate::math::lu::LinearSolve;
 
 /// Solves (I1) (with (I2) for massless rows) and writes `a_0` into `state.a` and
 /// `state.aux`. One residual evaluation. `method` names the caller in failures.

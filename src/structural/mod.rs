@@ -38,7 +38,7 @@
 //! Their Newton iterations on the acceleration ask the system for `S` with `c_m = 1`,
 //! `c_c = gamma h`, `c_k = beta h^2` (Newmark's matrix above times `beta h^2`, bounded as
 //! `h -> 0`); the index-3 form uses `c_m = (1 - alpha_m)/(1 - alpha_f)` and the same
-//! `c_c`, `c_k`. They share [`lu::Lu`] (dense LU with partial pivoting in place), [`newton`] (the
+//! `c_c`, `c_k`. They share [`crate::math::lu::DenseLu`] (dense LU with partial pivoting in place), [`newton`] (the
 //! Newton iteration on the acceleration and its options) and `init` (consistent initial
 //! accelerations, also for a singular mass matrix).
 use nalgebra::{DMatrix, DVector};
@@ -47,7 +47,6 @@ pub mod gen_alpha;
 pub mod gen_alpha_i3;
 pub mod hht;
 mod init;
-pub mod lu;
 pub mod method;
 pub mod newmark;
 pub mod newton;

@@ -30,9 +30,9 @@
 use nalgebra::DVector;
 
 use super::SecondOrder;
-use super::lu::LuError;
 use super::state::Work;
 use crate::integrate::{Failure, FailureKind, Stats};
+use crate::math::lu::{LinearSolve, LuError};
 
 /// The Newton options of a structural integrator.
 ///
@@ -100,7 +100,9 @@ pub(crate) fn check_step(t: f64, h: f64, method: &str) -> Result<(), Failure> {
 pub(crate) fn lu_failure(e: LuError, t: f64, method: &str) -> Failure {
     let kind = match e {
         LuError::NonFinite => FailureKind::NonFinite,
-        LuError::Singular { .. } | LuError::NotFactored => FailureKind::NewtonFailure,
+        LuError::Singular { .. } | LuError::NotFactored | LuError::Dimension { .. } => {
+            FailureKind::NewtonFailure
+        }
     };
     Failure::new(kind, t, format!("{method}: iteration matrix: {e}"))
 }

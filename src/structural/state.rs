@@ -19,8 +19,8 @@
 //! failure).
 use nalgebra::{DMatrix, DVector};
 
-use super::lu::Lu;
 use super::{Constraints, SecondOrder};
+use crate::math::lu::DenseLu as Lu;
 
 /// The state of a structural integrator and its workspace.
 ///
@@ -196,6 +196,7 @@ impl State {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::lu::LinearSolve;
 
     /// `commit` swaps the trial values in (the workspace keeps the old ones, same lengths)
     /// and leaves `lambda` alone unless asked.

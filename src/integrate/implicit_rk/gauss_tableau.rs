@@ -5,13 +5,13 @@
 //!
 //! Invariants: `A` of a Gauss method is invertible (its eigenvalues are the reciprocals of the
 //! poles of the Pade stability function, all in `Re > 0`), so `A^T d = b` has a solution, found
-//! by `linalg::DenseLu` once per method; the test `tableau_identities` checks the row sums,
+//! by `math::lu::DenseLu` once per method; the test `tableau_identities` checks the row sums,
 //! `sum b = 1`, and `d` against the collocation polynomial's Lagrange weights at 1.
 //!
 //! Where it fails: nowhere for these two tableaux (a singular `A` would trip a debug
 //! assertion).
-use super::super::linalg::DenseLu;
 use super::GaussScheme;
+use crate::math::lu::{DenseLu, LinearSolve, Substitution};
 
 pub(super) const MAX_STAGES: usize = 3;
 
@@ -53,11 +53,11 @@ impl Tableau {
         // d solves A^T d = b (A of a Gauss method is invertible: its eigenvalues are the
         // reciprocals of the poles of the Pade stability function, all in Re > 0).
         let s = t.s;
-        let mut lu = DenseLu::new(s);
+        let mut lu = DenseLu::with_substitution(s, Substitution::Reciprocal);
         let at = lu.matrix_mut();
         for i in 0..s {
             for j in 0..s {
-                at[i * s + j] = t.a[j][i];
+                at[(i, j)] = t.a[j][i];
             }
         }
         t.d[..s].copy_from_slice(&t.b[..s]);

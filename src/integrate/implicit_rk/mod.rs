@@ -21,7 +21,7 @@
 //! Jacobian `J = dF/dZ` at `Z = 0`, i.e. of `v -> dexp_inv(v, f(t, retract(x, v)))` at the
 //! step's initial state (forward differences, `n + 1` evaluations; this includes the derivative
 //! of `dexp_inv`, `-ad_f / 2` on SO(3)), the same `J` for every stage, and the iteration matrix
-//! `M = I - h (A (x) J)` of order `s n` factored once by `linalg::DenseLu`.
+//! `M = I - h (A (x) J)` of order `s n` factored once by `math::lu::DenseLu`.
 //!
 //! Update (HW II, sec. IV.8): `x_{n+1} = retract(x, sum_i d_i Z_i)` with `d^T = b^T A^{-1}`, on
 //! additive and Lie-group states alike. At the solution `sum_i d_i Z_i = h sum_i b_i F_i`
@@ -59,8 +59,8 @@ mod tests;
 
 use std::marker::PhantomData;
 
-use super::linalg::DenseLu;
 use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats, System};
+use crate::math::lu::{DenseLu, Substitution};
 use crate::math::vector::Vector;
 use gauss_tableau::{MAX_STAGES, Tableau};
 pub use options::{GaussScheme, JacobianUpdate, NewtonOptions};
@@ -110,7 +110,7 @@ impl<S: System> ImplicitRk<S> {
             tab,
             opts,
             n,
-            lu: DenseLu::new(m),
+            lu: DenseLu::with_substitution(m, Substitution::Reciprocal),
             lu_h: f64::NAN,
             jac: vec![0.0; n * n],
             jac_valid: false,

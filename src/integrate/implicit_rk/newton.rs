@@ -1,7 +1,7 @@
 //! The simplified Newton iteration of the stage equations of an implicit Gauss step
 //! (`ImplicitRk`, `mod.rs`; Hairer & Wanner, *Solving ODEs II*, sec. IV.8): the
 //! finite-difference Jacobian `J = dF/dZ` at `Z = 0`, the iteration matrix
-//! `M = I - h (A (x) J)` factored by `linalg::DenseLu`, and one Newton attempt from a given
+//! `M = I - h (A (x) J)` factored by `math::lu::DenseLu`, and one Newton attempt from a given
 //! guess (`predictor.rs`) with its convergence, stagnation and divergence tests.
 //!
 //! Convergence: iterate until the max-norm of the Newton update is at most
@@ -22,6 +22,7 @@
 use super::ImplicitRk;
 use super::predictor::{Guess, lagrange};
 use crate::integrate::{Failure, FailureKind, Stats, System};
+use crate::math::lu::LinearSolve;
 use crate::math::vector::Vector;
 
 impl<S: System> ImplicitRk<S> {
@@ -84,10 +85,11 @@ impl<S: System> ImplicitRk<S> {
             for j in 0..s {
                 let ha = h * self.tab.a[i][j];
                 for p in 0..n {
-                    let row = (i * n + p) * m + j * n;
+                    // Row i n + p, columns j n + q of the column-major buffer.
+                    let row = i * n + p;
                     for q in 0..n {
                         let id = if i == j && p == q { 1.0 } else { 0.0 };
-                        mat[row + q] = id - ha * self.jac[p * n + q];
+                        mat[(j * n + q) * m + row] = id - ha * self.jac[p * n + q];
                     }
                 }
             }

@@ -30,7 +30,7 @@ use super::meter::Meter;
 use super::chart::RotationChart;
 use super::corotational::Corotational;
 use super::krylov::Krylov;
-use crate::structural::lu::Lu;
+use crate::math::lu::{DenseLu as Lu, LinearSolve};
 
 /// Why a static step failed.
 #[derive(Debug, Clone, PartialEq)]

@@ -17,7 +17,10 @@
 //!   (its peak divides the relative errors and the claims); every score time is present;
 //!   `half_increment` states, per column, its peak (the data's, to 1e-12) and its accuracy
 //!   claim `relative_to_peak` (the largest difference from the same run at half the
-//!   increment, relative to that peak), finite, at least 0 and below [`CLAIM_MAX`].
+//!   increment, relative to that peak), finite, at least 0 and below [`CLAIM_MAX`];
+//!   its `provenance` block, as every stored reference has one ([`check_provenance`]):
+//!   exactly the keys of [`PROVENANCE_KEYS`], each a non-empty string, the tool naming the
+//!   generator's OpenSees version, the command and the script the generator's.
 //!
 //! Where it fails: the hashes prove the files are those the generator wrote, not that
 //! OpenSees computed them correctly; that is the cross-check's business (the manifest's
@@ -47,6 +50,12 @@ pub const REQUIREMENTS: &str = "references/fiber_column/requirements.txt";
 /// rerun differs from it by as much as the column's peak has not converged at all, and a
 /// claim that large (or negative, or not finite) is a broken file, not a reference.
 pub const CLAIM_MAX: f64 = 1.0;
+
+/// The keys of a record's `provenance` block, written by `generate.py` (`record_provenance`):
+/// the tool and its versions, the command that regenerates the record, its script, the
+/// accuracy claim (read from `half_increment`) and the cross-check (mbdbench's agreement
+/// with the record, as mbdbench measured it).
+pub const PROVENANCE_KEYS: [&str; 5] = ["tool", "command", "script", "accuracy_claim", "cross_check"];
 
 /// The folder of the OpenSees references under a references root.
 pub fn opensees_dir(root: &Path) -> PathBuf {
@@ -182,6 +191,9 @@ struct OpenSeesFile {
     #[serde(rename = "iterations")]
     _iterations: IgnoredAny,
     half_increment: HalfIncrement,
+    /// How the record was made ([`PROVENANCE_KEYS`]); read as a value so that a missing or
+    /// malformed block is refused naming its key ([`check_provenance`]).
+    provenance: Option<Value>,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -255,6 +267,59 @@ fn check_generator(shown: &str, g: &Generator, m: &Manifest) -> Result<(), Strin
         if got != want {
             return Err(format!(
                 "{shown}: key `generator.{key}` is `{got}`, MANIFEST.json's `{key}` is `{want}`"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The record's `provenance` block: an object with exactly the keys of [`PROVENANCE_KEYS`],
+/// each a non-empty string; its tool names the generator's OpenSees version, its command and
+/// script are the generator's (`generator.regenerate`, `generator.script`).
+fn check_provenance(shown: &str, p: Option<&Value>, g: &Generator) -> Result<(), String> {
+    let p = p.ok_or_else(|| {
+        format!(
+            "{shown}: key `provenance` is missing: every record states how it was made \
+             ({PROVENANCE_KEYS:?}); regenerate it ({})",
+            g.regenerate
+        )
+    })?;
+    let block = p.as_object().ok_or_else(|| {
+        format!("{shown}: key `provenance` is {p}, expected an object of {PROVENANCE_KEYS:?}")
+    })?;
+    if let Some(k) = block.keys().find(|k| !PROVENANCE_KEYS.contains(&k.as_str())) {
+        return Err(format!(
+            "{shown}: key `provenance.{k}` is not a key of the schema ({PROVENANCE_KEYS:?})"
+        ));
+    }
+    for k in PROVENANCE_KEYS {
+        match block.get(k) {
+            None => return Err(format!("{shown}: key `provenance.{k}` is missing")),
+            Some(Value::String(s)) if !s.trim().is_empty() => {}
+            Some(v) => {
+                return Err(format!(
+                    "{shown}: key `provenance.{k}` is {v}, expected a non-empty string"
+                ));
+            }
+        }
+    }
+    let text = |k: &str| block[k].as_str().unwrap_or_default();
+    let tool = format!("OpenSees {}", g.opensees);
+    if !text("tool").contains(&tool) {
+        return Err(format!(
+            "{shown}: key `provenance.tool` is `{}`, which does not name `{tool}` \
+             (`generator.opensees`)",
+            text("tool")
+        ));
+    }
+    for (k, want, from) in [
+        ("command", &g.regenerate, "generator.regenerate"),
+        ("script", &g.script, "generator.script"),
+    ] {
+        if text(k) != want {
+            return Err(format!(
+                "{shown}: key `provenance.{k}` is `{}`, `{from}` is `{want}`",
+                text(k)
             ));
         }
     }
@@ -430,6 +495,7 @@ pub fn load_external(
         ));
     }
     check_generator(&shown, &f.generator, &manifest)?;
+    check_provenance(&shown, f.provenance.as_ref(), &f.generator)?;
     model(&f.model, &f.settings).map_err(|e| {
         format!(
             "{shown}: {e}; regenerate it ({})",

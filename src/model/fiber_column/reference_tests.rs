@@ -4,8 +4,8 @@
 //! manifest without its provenance or without the generator's inputs, and a record whose
 //! generator hash is not the manifest's; the record's checks (with the manifest re-hashed, so
 //! that only they can refuse) refuse an unknown key, a repeated row, a column that is zero
-//! throughout, and a claim that is negative, huge, null or missing; each names the file and
-//! the key. The model's comparison with the case is `opensees_model_tests.rs`.
+//! throughout, a claim that is negative, huge, null or missing, and a provenance block that is
+//! missing or malformed; each names the file and the key. The model's comparison with the case is `opensees_model_tests.rs`.
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
@@ -52,6 +52,19 @@ fn tamper(root: &Path, f: impl Fn(&mut Value)) {
 
 /// An edit of a record.
 type Tamper = Box<dyn Fn(&mut Value)>;
+
+/// Each edit, re-hashed into the manifest of the copy `copied_root(tag)` made, is refused with
+/// an error naming the record and containing its expected text; the copy is put back after
+/// each.
+fn refused_by_key(root: &Path, tag: &str, cases: Vec<(&str, Tamper)>) {
+    for (want, f) in cases {
+        tamper(root, f);
+        let e = load(root, 5.0).err().unwrap_or_else(|| panic!("accepted: {want}"));
+        assert!(e.contains(&format!("{SCENE}.json: ")), "{e}");
+        assert!(e.contains(want), "{e}\nwanted: {want}");
+        restore(root, tag);
+    }
+}
 
 /// Puts the stored folder back in `root`, the copy `copied_root(tag)` made.
 fn restore(root: &Path, tag: &str) {
@@ -192,12 +205,59 @@ fn malformed_records_are_refused_by_key() {
             Box::new(|f| f["half_increment"]["peak_abs"]["base_shear"] = json!(1.0)),
         ),
     ];
-    for (want, f) in cases {
-        tamper(&root, f);
-        let e = load(&root, 5.0).err().unwrap_or_else(|| panic!("accepted: {want}"));
-        assert!(e.contains(&format!("{SCENE}.json: ")), "{e}");
-        assert!(e.contains(want), "{e}\nwanted: {want}");
-        restore(&root, "record");
-    }
+    refused_by_key(&root, "record", cases);
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// A record's `provenance` block is checked like the rest of it (on copies re-hashed into
+/// the manifest): a missing block, one that is not an object, one missing a key, with an
+/// unknown key, with an empty or non-string value, with a tool that does not name the
+/// generator's OpenSees, or with a command other than the generator's is refused, each
+/// naming the file and the key.
+#[test]
+fn malformed_provenance_is_refused_by_key() {
+    let root = copied_root("provenance");
+    let cases: Vec<(&str, Tamper)> = vec![
+        (
+            "key `provenance` is missing",
+            Box::new(|f| {
+                f.as_object_mut().unwrap().remove("provenance");
+            }),
+        ),
+        (
+            "key `provenance` is \"by hand\", expected an object",
+            Box::new(|f| f["provenance"] = json!("by hand")),
+        ),
+        (
+            "key `provenance.cross_check` is missing",
+            Box::new(|f| {
+                let p = f["provenance"].as_object_mut().unwrap();
+                p.remove("cross_check");
+            }),
+        ),
+        (
+            "key `provenance.author` is not a key of the schema",
+            Box::new(|f| f["provenance"]["author"] = json!("x")),
+        ),
+        (
+            "key `provenance.accuracy_claim` is \"\", expected a non-empty string",
+            Box::new(|f| f["provenance"]["accuracy_claim"] = json!("")),
+        ),
+        (
+            "key `provenance.tool` is 42, expected a non-empty string",
+            Box::new(|f| f["provenance"]["tool"] = json!(42)),
+        ),
+        (
+            "key `provenance.tool` is `OpenSees 3.6.0`, which does not name `OpenSees 3.7.1`",
+            Box::new(|f| f["provenance"]["tool"] = json!("OpenSees 3.6.0")),
+        ),
+        (
+            "key `provenance.command` is `python generate.py`, `generator.regenerate` is",
+            Box::new(|f| f["provenance"]["command"] = json!("python generate.py")),
+        ),
+    ];
+    refused_by_key(&root, "provenance", cases);
+    let e = load(&root, 5.0).unwrap();
+    assert_eq!(e.track.t.len(), 5880 / 5 + 1, "the stored block passes");
     let _ = std::fs::remove_dir_all(&root);
 }

@@ -30,7 +30,7 @@ use crate::integrate::explicit_rk::ExplicitRk;
 use crate::integrate::implicit_rk::ImplicitRk;
 use crate::integrate::{Failure, FailureKind, Limits, Stats, System};
 use crate::run::{Grid, Observe, RunOutput, Sample, Stepping, run_adaptive, run_fixed};
-use crate::structural::lu::Lu;
+use crate::math::lu::{DenseLu as Lu, LinearSolve};
 
 struct Scratch {
     q: DVector<f64>,
