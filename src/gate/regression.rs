@@ -7,8 +7,8 @@
 //! - an error metric (the family's `problem::Metric::reference_error` ones) regresses when `new > factor * old`; it is compared
 //!   only where both values lie above `FLOOR_CLAIMS` x the reference's accuracy claim
 //!   (`Problem::accuracy_claim`), since below that the error measures the reference, not the run;
-//! - a work count (`WORK_COUNTS`: RHS evaluations, Newton iterations; deterministic) regresses
-//!   when `new > WORK_SLACK * old` (skipped when both are 0).
+//! - a work count (`work_counts`: RHS evaluations, Newton iterations, element iterations;
+//!   deterministic) regresses when `new > WORK_SLACK * old` (skipped when both are 0).
 //!
 //! A run `ok` in the baseline that now ends in a typed failure is a regression row; runs in
 //! only one of the two are ignored (a new variant, a new ladder point), and so are runs made
@@ -28,6 +28,7 @@ use std::path::Path;
 use super::load::{load_as, load_summary};
 use super::{GateError, GateRow, Verdict, failure_text, metric_value};
 use crate::case::Case;
+use crate::integrate::COUNTERS;
 use crate::problem::Problem;
 use crate::reference;
 use crate::summary::{Record, RunKey, Status, Summary};
@@ -38,9 +39,11 @@ pub const DEFAULT_FACTOR: f64 = 3.0;
 pub const WORK_SLACK: f64 = 1.05;
 /// Errors are compared only above this multiple of the reference's accuracy claim.
 pub const FLOOR_CLAIMS: f64 = 100.0;
-/// The error metrics compared with the baseline.
-/// The work counts compared with the baseline.
-pub const WORK_COUNTS: [&str; 2] = ["rhs_evals", "newton_iters"];
+/// The work counts compared with the baseline: the counters a cost
+/// (`integrate::Counter::compared`).
+pub fn work_counts() -> impl Iterator<Item = &'static str> {
+    COUNTERS.iter().filter(|c| c.compared).map(|c| c.name)
+}
 
 /// Whether a row comes from the baseline comparison.
 pub fn is_baseline_row(r: &GateRow) -> bool {
@@ -196,7 +199,7 @@ pub fn compare_baseline(
                 }
             }
         }
-        for m in WORK_COUNTS {
+        for m in work_counts() {
             let (Some(Some(old)), Some(Some(new))) = (metric_value(b, m), metric_value(r, m))
             else {
                 continue;
@@ -400,6 +403,36 @@ mod tests {
         let rows = compare(&c, &s, &base);
         let f = failing(&rows);
         assert_eq!((f.len(), f[0].metric.as_str()), (1, "newton_iters"));
+    }
+
+    /// Element iterations (the fiber column's work) are compared like the other work counts:
+    /// 10 % more than the baseline's is a regression row naming `element_iters`, 4 % more a
+    /// passing row, none on both sides no row at all.
+    #[test]
+    fn element_iters_are_compared() {
+        let c = nine();
+        let mut base = passing(&c);
+        assert!(
+            compare(&c, &base, &base)
+                .iter()
+                .all(|r| r.metric != "element_iters")
+        );
+        rk4_at(&mut base, 1.0e-2).stats.element_iters = 1000;
+        let mut s = base.clone();
+        rk4_at(&mut s, 1.0e-2).stats.element_iters = 1040;
+        let rows = compare(&c, &s, &base);
+        let x: Vec<&GateRow> = rows
+            .iter()
+            .filter(|r| r.metric == "element_iters")
+            .collect();
+        assert_eq!((x.len(), x[0].verdict), (1, Verdict::Pass), "{rows:?}");
+        rk4_at(&mut s, 1.0e-2).stats.element_iters = 1100;
+        let rows = compare(&c, &s, &base);
+        let f = failing(&rows);
+        assert_eq!(
+            (f.len(), f[0].metric.as_str(), f[0].threshold.as_str()),
+            (1, "element_iters", "<= 1.05 x baseline 1000")
+        );
     }
 
     /// A run made with other settings than the baseline's (its `settings_sha256` differs) is
