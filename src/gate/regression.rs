@@ -108,6 +108,12 @@ fn scene_row(case: &str, scene: &str, metric: &str, threshold: &str, note: Strin
     }
 }
 
+/// A scene of a case: (case, scene).
+type SceneKey = (String, String);
+
+/// The references loaded for their accuracy claims, per scene (or why one cannot be).
+type Claims = BTreeMap<SceneKey, Result<Box<dyn Problem>, String>>;
+
 /// Compares `current` with `baseline` (read from `baseline_path`, named in errors). The
 /// accuracy claims come from the references under `references`, loaded with the cases'
 /// current physics hashes.
@@ -131,9 +137,9 @@ pub fn compare_baseline(
         .filter(|r| r.status != Status::NotApplicable)
         .collect();
     now.sort_by_key(|r| r.report_order());
-    let mut claims: BTreeMap<(String, String), Result<Box<dyn Problem>, String>> = BTreeMap::new();
-    let mut stale: BTreeMap<(String, String), usize> = BTreeMap::new();
-    let mut renewed: BTreeMap<(String, String), usize> = BTreeMap::new();
+    let mut claims = Claims::new();
+    let mut stale: BTreeMap<SceneKey, usize> = BTreeMap::new();
+    let mut renewed: BTreeMap<SceneKey, usize> = BTreeMap::new();
     let mut common = 0usize;
     let mut rows = vec![];
     for r in now {
@@ -141,18 +147,15 @@ pub fn compare_baseline(
             continue;
         };
         common += 1;
+        let scene = || (r.key.case.clone(), r.key.scene.clone());
         if b.inputs_sha256 != r.inputs_sha256 {
-            *stale
-                .entry((r.key.case.clone(), r.key.scene.clone()))
-                .or_default() += 1;
+            *stale.entry(scene()).or_default() += 1;
             continue;
         }
         if let (Some(old), Some(new)) = (&b.settings_sha256, &r.settings_sha256)
             && old != new
         {
-            *renewed
-                .entry((r.key.case.clone(), r.key.scene.clone()))
-                .or_default() += 1;
+            *renewed.entry(scene()).or_default() += 1;
             continue;
         }
         if b.status == Status::Ok && r.status == Status::Failed {
@@ -165,66 +168,96 @@ pub fn compare_baseline(
         if b.status != Status::Ok || r.status != Status::Ok {
             continue;
         }
-        let pairs: Vec<(&str, f64, f64)> = error_metrics(cases, &r.key.case)
-            .iter()
-            .filter_map(|m| {
-                let old = metric_value(b, m).flatten()?;
-                let new = metric_value(r, m).flatten()?;
-                Some((*m, old, new))
-            })
-            .collect();
-        if !pairs.is_empty() {
-            let loaded = claims
-                .entry((r.key.case.clone(), r.key.scene.clone()))
-                .or_insert_with(|| load_reference(cases, references, &r.key.case, &r.key.scene));
-            if let Ok(reference) = loaded {
-                for (m, old, new) in pairs {
-                    let floor = FLOOR_CLAIMS
-                        * reference
-                            .accuracy_claim_for(m, &r.key.formulation)
-                            .unwrap_or(f64::INFINITY);
-                    if !(old > floor && new > floor) {
-                        continue;
-                    }
-                    let mut x = row(r, m, Some(new), format!("<= {factor} x baseline {old:e}"));
-                    x.ratio = Some(new / old);
-                    if new > factor * old {
-                        x.verdict = Verdict::Fail;
-                        x.note = format!(
-                            "regression: {:.3}x the baseline (floor {floor:.2e})",
-                            new / old
-                        );
-                    }
-                    rows.push(x);
-                }
-            }
-        }
-        for m in work_counts() {
-            let (Some(Some(old)), Some(Some(new))) = (metric_value(b, m), metric_value(r, m))
-            else {
-                continue;
-            };
-            if old == 0.0 && new == 0.0 {
-                continue;
-            }
-            let mut x = row(r, m, Some(new), format!("<= {WORK_SLACK} x baseline {old}"));
-            x.ratio = (old > 0.0).then(|| new / old);
-            if new > WORK_SLACK * old {
-                x.verdict = Verdict::Fail;
-                x.note = if old > 0.0 {
-                    format!("regression: {:+.1} % work", 100.0 * (new / old - 1.0))
-                } else {
-                    "regression: work where the baseline had none".into()
-                };
-            }
-            rows.push(x);
-        }
+        compare_errors(cases, references, factor, b, r, &mut claims, &mut rows);
+        compare_work(b, r, &mut rows);
     }
     if common == 0 {
         return Err(GateError::Disjoint {
             path: baseline_path.display().to_string(),
         });
     }
+    scene_rows(stale, renewed, claims, &mut rows);
+    Ok(rows)
+}
+
+/// The error-metric rows of a run `ok` on both sides: one per reference error above the
+/// floor of the reference's claim (loaded into `claims` once per scene) on both sides.
+fn compare_errors(
+    cases: &[Case],
+    references: &Path,
+    factor: f64,
+    b: &Record,
+    r: &Record,
+    claims: &mut Claims,
+    rows: &mut Vec<GateRow>,
+) {
+    let pairs: Vec<(&str, f64, f64)> = error_metrics(cases, &r.key.case)
+        .iter()
+        .filter_map(|m| {
+            let old = metric_value(b, m).flatten()?;
+            let new = metric_value(r, m).flatten()?;
+            Some((*m, old, new))
+        })
+        .collect();
+    if !pairs.is_empty() {
+        let loaded = claims
+            .entry((r.key.case.clone(), r.key.scene.clone()))
+            .or_insert_with(|| load_reference(cases, references, &r.key.case, &r.key.scene));
+        if let Ok(reference) = loaded {
+            for (m, old, new) in pairs {
+                let floor = FLOOR_CLAIMS
+                    * reference
+                        .accuracy_claim_for(m, &r.key.formulation)
+                        .unwrap_or(f64::INFINITY);
+                if !(old > floor && new > floor) {
+                    continue;
+                }
+                let mut x = row(r, m, Some(new), format!("<= {factor} x baseline {old:e}"));
+                x.ratio = Some(new / old);
+                if new > factor * old {
+                    x.verdict = Verdict::Fail;
+                    x.note = format!(
+                        "regression: {:.3}x the baseline (floor {floor:.2e})",
+                        new / old
+                    );
+                }
+                rows.push(x);
+            }
+        }
+    }
+}
+
+/// The work-count rows of a run `ok` on both sides (`work_counts`; none where both are 0).
+fn compare_work(b: &Record, r: &Record, rows: &mut Vec<GateRow>) {
+    for m in work_counts() {
+        let (Some(Some(old)), Some(Some(new))) = (metric_value(b, m), metric_value(r, m)) else {
+            continue;
+        };
+        if old == 0.0 && new == 0.0 {
+            continue;
+        }
+        let mut x = row(r, m, Some(new), format!("<= {WORK_SLACK} x baseline {old}"));
+        x.ratio = (old > 0.0).then(|| new / old);
+        if new > WORK_SLACK * old {
+            x.verdict = Verdict::Fail;
+            x.note = if old > 0.0 {
+                format!("regression: {:+.1} % work", 100.0 * (new / old - 1.0))
+            } else {
+                "regression: work where the baseline had none".into()
+            };
+        }
+        rows.push(x);
+    }
+}
+
+/// The rows about whole scenes: stale physics (failing), other settings (skipped), a
+/// reference that cannot be loaded for its claims (failing).
+fn scene_rows(
+    stale: BTreeMap<SceneKey, usize>,
+    renewed: BTreeMap<SceneKey, usize>,
+    claims: Claims,
+    rows: &mut Vec<GateRow>,
+) {
     for ((case, scene), n) in stale {
         rows.push(scene_row(
             &case,
@@ -262,7 +295,6 @@ pub fn compare_baseline(
             ));
         }
     }
-    Ok(rows)
 }
 
 /// The reference errors of a case's family (none for a case not in the catalogue).
