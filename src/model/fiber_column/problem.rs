@@ -510,15 +510,7 @@ impl FiberProblem {
         s.set("peak_displacement_error", (peak - peak_ref).abs() / peak_ref);
         s.set("residual_displacement_error", *d.last().unwrap_or(&f64::NAN));
         let v_ref = r.column("base_shear");
-        let peak_v = v_ref.iter().fold(0.0f64, |p, x| p.max(x.abs()));
-        let dv: Vec<f64> = scored
-            .iter()
-            .zip(v_ref)
-            .map(|(o, x)| (o.base_shear - x).abs() / peak_v)
-            .collect();
-        let rms = (dv.iter().map(|x| x * x).sum::<f64>() / dv.len() as f64).sqrt();
-        s.set("base_shear_error_rms", rms);
-        s.set("base_shear_error_max", dv.iter().copied().fold(0.0, f64::max));
+        base_shear_errors(s, scored, v_ref);
         tracks.insert(
             "base_shear_reference".to_string(),
             v_ref.iter().map(|x| Some(*x)).collect(),
@@ -536,15 +528,7 @@ impl FiberProblem {
         tracks: &mut Tracks,
     ) -> Option<Vec<f64>> {
         let v_ref = r.column("base_shear");
-        let peak = v_ref.iter().fold(0.0f64, |p, x| p.max(x.abs()));
-        let d: Vec<f64> = scored
-            .iter()
-            .zip(v_ref)
-            .map(|(o, x)| (o.base_shear - x).abs() / peak)
-            .collect();
-        let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt();
-        s.set("base_shear_error_rms", rms);
-        s.set("base_shear_error_max", d.iter().copied().fold(0.0, f64::max));
+        let d = base_shear_errors(s, scored, v_ref);
         let col = |f: fn(&ColumnObs) -> f64| scored.iter().map(|o| f(o)).collect::<Vec<_>>();
         let w = input_work(
             &col(|o| o.top_displacement),
@@ -667,6 +651,21 @@ fn why_unscored(failed: &Option<String>, reference: Option<&Track>, n: usize) ->
             .is_none()
             .then(|| "no reference attached".to_string())
     })
+}
+
+/// The base shear's error against `v_ref` relative to its peak at every score point, its
+/// RMS and maximum set as scores.
+fn base_shear_errors(s: &mut Scores, scored: &[&ColumnObs], v_ref: &[f64]) -> Vec<f64> {
+    let peak = v_ref.iter().fold(0.0f64, |p, x| p.max(x.abs()));
+    let d: Vec<f64> = scored
+        .iter()
+        .zip(v_ref)
+        .map(|(o, x)| (o.base_shear - x).abs() / peak)
+        .collect();
+    let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt();
+    s.set("base_shear_error_rms", rms);
+    s.set("base_shear_error_max", d.iter().copied().fold(0.0, f64::max));
+    d
 }
 
 /// The static scene's tip error against `r`, relative to the column's height `l`, at every
