@@ -436,7 +436,7 @@ fn check_chart<C: Probe>() {
     );
 }
 
-/// 1. R -> chart -> R over random and special rotations (errors of R and of the position),
+/// Check 1: R -> chart -> R over random and special rotations (errors of R and of the position),
 /// and the smallest conditioning over the special ones: below 1e-15 for the Euler charts
 /// (they reach their singularity), at least 1/2 for the others.
 fn check_rotation_round_trip<C: Probe>(x: &Vector3<f64>) -> (f64, f64, f64, f64, f64) {
@@ -453,7 +453,7 @@ fn check_rotation_round_trip<C: Probe>(x: &Vector3<f64>) -> (f64, f64, f64, f64,
     (e_rand, dx_rand, e_spec, dx_spec, min_cond)
 }
 
-/// 2. chart -> R -> chart, compared as rotations (on-manifold samples; the others' R is not
+/// Check 2: chart -> R -> chart, compared as rotations (on-manifold samples; the others' R is not
 /// a rotation); returns the largest geodesic error.
 fn check_chart_round_trip<C: Probe>() -> f64 {
     let mut e_back = 0.0_f64;
@@ -471,7 +471,7 @@ fn check_chart_round_trip<C: Probe>() -> f64 {
     e_back
 }
 
-/// 3. The kinematic map against central differences, direct (conditioning at least 0.1) and
+/// Check 3: The kinematic map against central differences, direct (conditioning at least 0.1) and
 /// superposed (at least 1e-7; an Euler chart must reach a near-singular point); returns the
 /// largest errors and the near-singular points reached.
 fn check_kinematic_map<C: Probe>(points: &[C::Coords], rng: &mut Rng) -> (f64, f64, usize) {
@@ -511,7 +511,7 @@ fn check_kinematic_map<C: Probe>(points: &[C::Coords], rng: &mut Rng) -> (f64, f
     (e_dir, e_sup, n_sup)
 }
 
-/// 4. Retract by zero is the identity, exactly.
+/// Check 4: Retract by zero is the identity, exactly.
 fn check_zero_retract<C: Probe>(points: &[C::Coords]) {
     for c in points {
         for spatial in [false, true] {
@@ -521,7 +521,7 @@ fn check_zero_retract<C: Probe>(points: &[C::Coords]) {
     }
 }
 
-/// 5. normalize: idempotent to 4 eps, keeps an on-manifold rotation, reports itself;
+/// Check 5: normalize: idempotent to 4 eps, keeps an on-manifold rotation, reports itself;
 /// returns the largest rotation it moved.
 fn check_normalize<C: Probe>(points: &[C::Coords], rng: &mut Rng) -> f64 {
     let mut e_norm = 0.0_f64;
@@ -555,7 +555,7 @@ fn check_normalize<C: Probe>(points: &[C::Coords], rng: &mut Rng) -> f64 {
     e_norm
 }
 
-/// 6. dexp_inv(0, v) = v; the RKMK identity on Lie charts; returns its largest error.
+/// Check 6: dexp_inv(0, v) = v; the RKMK identity on Lie charts; returns its largest error.
 fn check_dexp_inv<C: Probe>(points: &[C::Coords], rng: &mut Rng) -> f64 {
     let mut e_rkmk = 0.0_f64;
     for spatial in [false, true] {
