@@ -7,7 +7,7 @@
 //! grouped by reason (at most `AVOID_LINES` lines per case, with the count of the rest).
 use std::fmt::Write;
 
-use super::{Advice, Pick, Setting, TIE_REL, TargetAdvice};
+use super::{Advice, CaseAdvice, Pick, Setting, TIE_REL, TargetAdvice};
 
 /// Avoid lines shown per case (the JSON holds them all).
 pub const AVOID_LINES: usize = 8;
@@ -80,102 +80,114 @@ pub fn render(a: &Advice) -> String {
             let _ = writeln!(out, "  reference = a variant: {}", n.text);
         }
         for t in &c.targets {
-            match &t.winner {
-                Some(w) => {
-                    let mut line = format!(
-                        "  <= {:e}: {}{} (cost {}{}; {})",
-                        t.target,
-                        if t.tie.is_empty() { "" } else { "tie: " },
-                        w.name(),
-                        w.cost,
-                        w.wall_s.map_or(String::new(), |s| format!(", {s:.3} s")),
-                        settings(w)
-                    );
-                    if !t.tie.is_empty() {
-                        let within = TIE_REL * 1e2;
-                        let _ = write!(
-                            line,
-                            "; tied within {within:.0} %: {}",
-                            tied(t, w, a.by == "time")
-                        );
-                    } else if let (Some(r), Some(g)) = (&t.runner_up, t.gap) {
-                        let _ = write!(line, "; runner-up {} x{g:.2}", r.name());
-                    }
-                    if let Some(b) = &t.by_time {
-                        let _ = write!(line, "; fastest by wall time {}", b.name());
-                    }
-                    let _ = writeln!(out, "{line}");
-                    if let Some(n) = &t.note {
-                        let _ = writeln!(out, "      ({n})");
-                    }
-                }
-                None => {
-                    let _ = writeln!(
-                        out,
-                        "  <= {:e}: none ({})",
-                        t.target,
-                        t.note.as_deref().unwrap_or("-")
-                    );
-                }
-            }
+            target_line(&mut out, t, a.by == "time");
         }
         for s in &c.skipped_targets {
             let _ = writeln!(out, "  <= {:e}: not offered: {}", s.target, s.reason);
         }
-        if !c.robustness.is_empty() {
-            let _ = writeln!(
-                out,
-                "  at what step (stability study; largest accurate, then stable):"
-            );
-            let step = |s: &Option<Setting>| match s {
-                Some(Setting::Dt(x)) => format!("dt {x:.3e}"),
-                Some(Setting::Tol(x)) => format!("tol {x:.3e}"),
-                None => "none".into(),
-            };
-            for r in c.robustness.iter().take(ROBUST_LINES) {
-                let _ = writeln!(
-                    out,
-                    "    {}/{}/{} on {}: accurate {}, stable {}{}",
-                    r.param,
-                    r.integrator,
-                    r.formulation,
-                    r.scene,
-                    if r.accuracy_searched {
-                        step(&r.accurate)
-                    } else {
-                        "not searched".into()
-                    },
-                    step(&r.stable),
-                    r.limited_by
-                        .as_ref()
-                        .map_or(String::new(), |l| format!(" (limited by {l})"))
-                );
-            }
-            if c.robustness.len() > ROBUST_LINES {
-                let _ = writeln!(
-                    out,
-                    "    ... {} more (advise --json lists them all)",
-                    c.robustness.len() - ROBUST_LINES
-                );
-            }
-        }
-        if !c.avoid.is_empty() {
-            let _ = writeln!(out, "  avoid ({}):", c.avoid.len());
-            for v in c.avoid.iter().take(AVOID_LINES) {
-                let who = match (&v.integrator, &v.formulation) {
-                    (Some(i), Some(f)) => format!("{}/{i}/{f}", v.param),
-                    _ => format!("{} (chart)", v.param),
-                };
-                let _ = writeln!(out, "    {who} on {}: {}", v.scene, v.reason);
-            }
-            if c.avoid.len() > AVOID_LINES {
-                let _ = writeln!(
-                    out,
-                    "    ... {} more (advise --json lists them all)",
-                    c.avoid.len() - AVOID_LINES
-                );
-            }
-        }
+        robustness_lines(&mut out, c);
+        avoid_lines(&mut out, c);
     }
     out
+}
+
+/// A target's line: its winner with settings and cost, the tie or runner-up, the wall-time
+/// winner (ranked by wall time when `by_time`), or none and why.
+fn target_line(out: &mut String, t: &TargetAdvice, by_time: bool) {
+    match &t.winner {
+        Some(w) => {
+            let mut line = format!(
+                "  <= {:e}: {}{} (cost {}{}; {})",
+                t.target,
+                if t.tie.is_empty() { "" } else { "tie: " },
+                w.name(),
+                w.cost,
+                w.wall_s.map_or(String::new(), |s| format!(", {s:.3} s")),
+                settings(w)
+            );
+            if !t.tie.is_empty() {
+                let within = TIE_REL * 1e2;
+                let _ = write!(line, "; tied within {within:.0} %: {}", tied(t, w, by_time));
+            } else if let (Some(r), Some(g)) = (&t.runner_up, t.gap) {
+                let _ = write!(line, "; runner-up {} x{g:.2}", r.name());
+            }
+            if let Some(b) = &t.by_time {
+                let _ = write!(line, "; fastest by wall time {}", b.name());
+            }
+            let _ = writeln!(out, "{line}");
+            if let Some(n) = &t.note {
+                let _ = writeln!(out, "      ({n})");
+            }
+        }
+        None => {
+            let _ = writeln!(
+                out,
+                "  <= {:e}: none ({})",
+                t.target,
+                t.note.as_deref().unwrap_or("-")
+            );
+        }
+    }
+}
+
+/// The robustness ranking (at most `ROBUST_LINES` lines, then the count of the rest).
+fn robustness_lines(out: &mut String, c: &CaseAdvice) {
+    if !c.robustness.is_empty() {
+        let _ = writeln!(
+            out,
+            "  at what step (stability study; largest accurate, then stable):"
+        );
+        let step = |s: &Option<Setting>| match s {
+            Some(Setting::Dt(x)) => format!("dt {x:.3e}"),
+            Some(Setting::Tol(x)) => format!("tol {x:.3e}"),
+            None => "none".into(),
+        };
+        for r in c.robustness.iter().take(ROBUST_LINES) {
+            let _ = writeln!(
+                out,
+                "    {}/{}/{} on {}: accurate {}, stable {}{}",
+                r.param,
+                r.integrator,
+                r.formulation,
+                r.scene,
+                if r.accuracy_searched {
+                    step(&r.accurate)
+                } else {
+                    "not searched".into()
+                },
+                step(&r.stable),
+                r.limited_by
+                    .as_ref()
+                    .map_or(String::new(), |l| format!(" (limited by {l})"))
+            );
+        }
+        if c.robustness.len() > ROBUST_LINES {
+            let _ = writeln!(
+                out,
+                "    ... {} more (advise --json lists them all)",
+                c.robustness.len() - ROBUST_LINES
+            );
+        }
+    }
+}
+
+/// The avoid list (at most `AVOID_LINES` lines, then the count of the rest).
+fn avoid_lines(out: &mut String, c: &CaseAdvice) {
+    if !c.avoid.is_empty() {
+        let _ = writeln!(out, "  avoid ({}):", c.avoid.len());
+        for v in c.avoid.iter().take(AVOID_LINES) {
+            let who = match (&v.integrator, &v.formulation) {
+                (Some(i), Some(f)) => format!("{}/{i}/{f}", v.param),
+                _ => format!("{} (chart)", v.param),
+            };
+            let _ = writeln!(out, "    {who} on {}: {}", v.scene, v.reason);
+        }
+        if c.avoid.len() > AVOID_LINES {
+            let _ = writeln!(
+                out,
+                "    ... {} more (advise --json lists them all)",
+                c.avoid.len() - AVOID_LINES
+            );
+        }
+    }
 }

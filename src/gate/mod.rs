@@ -81,7 +81,7 @@ pub struct GateRow {
     pub dt: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub tol: Option<f64>,
-    /// The metric (or `rhs_evals`, `newton_iters` for baseline rows; `expect failed (kind)`
+    /// The metric (or a compared work counter, `integrate::Counter::compared`, for baseline rows; `expect failed (kind)`
     /// for an expected-failure gate, `check_label`).
     pub metric: String,
     /// The value found (None: no record, or a null metric).
@@ -103,14 +103,9 @@ pub struct GateRow {
     pub ratio: Option<f64>,
 }
 
-/// The deterministic work counters of a record (`stats`) a gate may name.
-pub const WORK_METRICS: &[&str] = &[
-    "steps",
-    "rhs_evals",
-    "newton_iters",
-    "rejected",
-    "normalizations",
-];
+/// The deterministic work counters of a record (`stats`) a gate may name: every counter of
+/// `integrate::COUNTERS`.
+pub const WORK_METRICS: &[&str] = &crate::integrate::COUNTER_NAMES;
 
 /// The metric-name lists a gate may name besides the names found in the records and every
 /// model family's metrics (`problem::Family::metrics`); a new study is one more entry.
@@ -237,16 +232,7 @@ pub fn metric_value(r: &Record, metric: &str) -> Option<Option<f64>> {
     if let Some(v) = r.metrics.get(metric) {
         return Some(*v);
     }
-    let s = &r.stats;
-    let count = match metric {
-        "steps" => s.steps,
-        "rhs_evals" => s.rhs_evals,
-        "newton_iters" => s.newton_iters,
-        "rejected" => s.rejected,
-        "normalizations" => s.normalizations,
-        _ => return None,
-    };
-    Some(Some(count as f64))
+    r.stats.count(metric).map(|n| Some(n as f64))
 }
 
 /// The start of an expected-failure gate's `metric` column (`expect_label`).

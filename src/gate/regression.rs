@@ -7,8 +7,8 @@
 //! - an error metric (the family's `problem::Metric::reference_error` ones) regresses when `new > factor * old`; it is compared
 //!   only where both values lie above `FLOOR_CLAIMS` x the reference's accuracy claim
 //!   (`Problem::accuracy_claim`), since below that the error measures the reference, not the run;
-//! - a work count (`WORK_COUNTS`: RHS evaluations, Newton iterations; deterministic) regresses
-//!   when `new > WORK_SLACK * old` (skipped when both are 0).
+//! - a work count (`work_counts`: RHS evaluations, Newton iterations, element iterations;
+//!   deterministic) regresses when `new > WORK_SLACK * old` (skipped when both are 0).
 //!
 //! A run `ok` in the baseline that now ends in a typed failure is a regression row; runs in
 //! only one of the two are ignored (a new variant, a new ladder point), and so are runs made
@@ -28,6 +28,7 @@ use std::path::Path;
 use super::load::{load_as, load_summary};
 use super::{GateError, GateRow, Verdict, failure_text, metric_value};
 use crate::case::Case;
+use crate::integrate::COUNTERS;
 use crate::problem::Problem;
 use crate::reference;
 use crate::summary::{Record, RunKey, Status, Summary};
@@ -38,9 +39,11 @@ pub const DEFAULT_FACTOR: f64 = 3.0;
 pub const WORK_SLACK: f64 = 1.05;
 /// Errors are compared only above this multiple of the reference's accuracy claim.
 pub const FLOOR_CLAIMS: f64 = 100.0;
-/// The error metrics compared with the baseline.
-/// The work counts compared with the baseline.
-pub const WORK_COUNTS: [&str; 2] = ["rhs_evals", "newton_iters"];
+/// The work counts compared with the baseline: the counters a cost
+/// (`integrate::Counter::compared`).
+pub fn work_counts() -> impl Iterator<Item = &'static str> {
+    COUNTERS.iter().filter(|c| c.compared).map(|c| c.name)
+}
 
 /// Whether a row comes from the baseline comparison.
 pub fn is_baseline_row(r: &GateRow) -> bool {
@@ -105,6 +108,12 @@ fn scene_row(case: &str, scene: &str, metric: &str, threshold: &str, note: Strin
     }
 }
 
+/// A scene of a case: (case, scene).
+type SceneKey = (String, String);
+
+/// The references loaded for their accuracy claims, per scene (or why one cannot be).
+type Claims = BTreeMap<SceneKey, Result<Box<dyn Problem>, String>>;
+
 /// Compares `current` with `baseline` (read from `baseline_path`, named in errors). The
 /// accuracy claims come from the references under `references`, loaded with the cases'
 /// current physics hashes.
@@ -128,9 +137,9 @@ pub fn compare_baseline(
         .filter(|r| r.status != Status::NotApplicable)
         .collect();
     now.sort_by_key(|r| crate::catalogue::report_order(r));
-    let mut claims: BTreeMap<(String, String), Result<Box<dyn Problem>, String>> = BTreeMap::new();
-    let mut stale: BTreeMap<(String, String), usize> = BTreeMap::new();
-    let mut renewed: BTreeMap<(String, String), usize> = BTreeMap::new();
+    let mut claims = Claims::new();
+    let mut stale: BTreeMap<SceneKey, usize> = BTreeMap::new();
+    let mut renewed: BTreeMap<SceneKey, usize> = BTreeMap::new();
     let mut common = 0usize;
     let mut rows = vec![];
     for r in now {
@@ -138,18 +147,15 @@ pub fn compare_baseline(
             continue;
         };
         common += 1;
+        let scene = || (r.key.case.clone(), r.key.scene.clone());
         if b.inputs_sha256 != r.inputs_sha256 {
-            *stale
-                .entry((r.key.case.clone(), r.key.scene.clone()))
-                .or_default() += 1;
+            *stale.entry(scene()).or_default() += 1;
             continue;
         }
         if let (Some(old), Some(new)) = (&b.settings_sha256, &r.settings_sha256)
             && old != new
         {
-            *renewed
-                .entry((r.key.case.clone(), r.key.scene.clone()))
-                .or_default() += 1;
+            *renewed.entry(scene()).or_default() += 1;
             continue;
         }
         if b.status == Status::Ok && r.status == Status::Failed {
@@ -162,66 +168,96 @@ pub fn compare_baseline(
         if b.status != Status::Ok || r.status != Status::Ok {
             continue;
         }
-        let pairs: Vec<(&str, f64, f64)> = error_metrics(cases, &r.key.case)
-            .iter()
-            .filter_map(|m| {
-                let old = metric_value(b, m).flatten()?;
-                let new = metric_value(r, m).flatten()?;
-                Some((*m, old, new))
-            })
-            .collect();
-        if !pairs.is_empty() {
-            let loaded = claims
-                .entry((r.key.case.clone(), r.key.scene.clone()))
-                .or_insert_with(|| load_reference(cases, references, &r.key.case, &r.key.scene));
-            if let Ok(reference) = loaded {
-                for (m, old, new) in pairs {
-                    let floor = FLOOR_CLAIMS
-                        * reference
-                            .accuracy_claim_for(m, &r.key.formulation)
-                            .unwrap_or(f64::INFINITY);
-                    if !(old > floor && new > floor) {
-                        continue;
-                    }
-                    let mut x = row(r, m, Some(new), format!("<= {factor} x baseline {old:e}"));
-                    x.ratio = Some(new / old);
-                    if new > factor * old {
-                        x.verdict = Verdict::Fail;
-                        x.note = format!(
-                            "regression: {:.3}x the baseline (floor {floor:.2e})",
-                            new / old
-                        );
-                    }
-                    rows.push(x);
-                }
-            }
-        }
-        for m in WORK_COUNTS {
-            let (Some(Some(old)), Some(Some(new))) = (metric_value(b, m), metric_value(r, m))
-            else {
-                continue;
-            };
-            if old == 0.0 && new == 0.0 {
-                continue;
-            }
-            let mut x = row(r, m, Some(new), format!("<= {WORK_SLACK} x baseline {old}"));
-            x.ratio = (old > 0.0).then(|| new / old);
-            if new > WORK_SLACK * old {
-                x.verdict = Verdict::Fail;
-                x.note = if old > 0.0 {
-                    format!("regression: {:+.1} % work", 100.0 * (new / old - 1.0))
-                } else {
-                    "regression: work where the baseline had none".into()
-                };
-            }
-            rows.push(x);
-        }
+        compare_errors(cases, references, factor, b, r, &mut claims, &mut rows);
+        compare_work(b, r, &mut rows);
     }
     if common == 0 {
         return Err(GateError::Disjoint {
             path: baseline_path.display().to_string(),
         });
     }
+    scene_rows(stale, renewed, claims, &mut rows);
+    Ok(rows)
+}
+
+/// The error-metric rows of a run `ok` on both sides: one per reference error above the
+/// floor of the reference's claim (loaded into `claims` once per scene) on both sides.
+fn compare_errors(
+    cases: &[Case],
+    references: &Path,
+    factor: f64,
+    b: &Record,
+    r: &Record,
+    claims: &mut Claims,
+    rows: &mut Vec<GateRow>,
+) {
+    let pairs: Vec<(&str, f64, f64)> = error_metrics(cases, &r.key.case)
+        .iter()
+        .filter_map(|m| {
+            let old = metric_value(b, m).flatten()?;
+            let new = metric_value(r, m).flatten()?;
+            Some((*m, old, new))
+        })
+        .collect();
+    if !pairs.is_empty() {
+        let loaded = claims
+            .entry((r.key.case.clone(), r.key.scene.clone()))
+            .or_insert_with(|| load_reference(cases, references, &r.key.case, &r.key.scene));
+        if let Ok(reference) = loaded {
+            for (m, old, new) in pairs {
+                let floor = FLOOR_CLAIMS
+                    * reference
+                        .accuracy_claim_for(m, &r.key.formulation)
+                        .unwrap_or(f64::INFINITY);
+                if !(old > floor && new > floor) {
+                    continue;
+                }
+                let mut x = row(r, m, Some(new), format!("<= {factor} x baseline {old:e}"));
+                x.ratio = Some(new / old);
+                if new > factor * old {
+                    x.verdict = Verdict::Fail;
+                    x.note = format!(
+                        "regression: {:.3}x the baseline (floor {floor:.2e})",
+                        new / old
+                    );
+                }
+                rows.push(x);
+            }
+        }
+    }
+}
+
+/// The work-count rows of a run `ok` on both sides (`work_counts`; none where both are 0).
+fn compare_work(b: &Record, r: &Record, rows: &mut Vec<GateRow>) {
+    for m in work_counts() {
+        let (Some(Some(old)), Some(Some(new))) = (metric_value(b, m), metric_value(r, m)) else {
+            continue;
+        };
+        if old == 0.0 && new == 0.0 {
+            continue;
+        }
+        let mut x = row(r, m, Some(new), format!("<= {WORK_SLACK} x baseline {old}"));
+        x.ratio = (old > 0.0).then(|| new / old);
+        if new > WORK_SLACK * old {
+            x.verdict = Verdict::Fail;
+            x.note = if old > 0.0 {
+                format!("regression: {:+.1} % work", 100.0 * (new / old - 1.0))
+            } else {
+                "regression: work where the baseline had none".into()
+            };
+        }
+        rows.push(x);
+    }
+}
+
+/// The rows about whole scenes: stale physics (failing), other settings (skipped), a
+/// reference that cannot be loaded for its claims (failing).
+fn scene_rows(
+    stale: BTreeMap<SceneKey, usize>,
+    renewed: BTreeMap<SceneKey, usize>,
+    claims: Claims,
+    rows: &mut Vec<GateRow>,
+) {
     for ((case, scene), n) in stale {
         rows.push(scene_row(
             &case,
@@ -259,7 +295,6 @@ pub fn compare_baseline(
             ));
         }
     }
-    Ok(rows)
 }
 
 /// The reference errors of a case's family (none for a case not in the catalogue).
@@ -400,6 +435,36 @@ mod tests {
         let rows = compare(&c, &s, &base);
         let f = failing(&rows);
         assert_eq!((f.len(), f[0].metric.as_str()), (1, "newton_iters"));
+    }
+
+    /// Element iterations (the fiber column's work) are compared like the other work counts:
+    /// 10 % more than the baseline's is a regression row naming `element_iters`, 4 % more a
+    /// passing row, none on both sides no row at all.
+    #[test]
+    fn element_iters_are_compared() {
+        let c = nine();
+        let mut base = passing(&c);
+        assert!(
+            compare(&c, &base, &base)
+                .iter()
+                .all(|r| r.metric != "element_iters")
+        );
+        rk4_at(&mut base, 1.0e-2).stats.element_iters = 1000;
+        let mut s = base.clone();
+        rk4_at(&mut s, 1.0e-2).stats.element_iters = 1040;
+        let rows = compare(&c, &s, &base);
+        let x: Vec<&GateRow> = rows
+            .iter()
+            .filter(|r| r.metric == "element_iters")
+            .collect();
+        assert_eq!((x.len(), x[0].verdict), (1, Verdict::Pass), "{rows:?}");
+        rk4_at(&mut s, 1.0e-2).stats.element_iters = 1100;
+        let rows = compare(&c, &s, &base);
+        let f = failing(&rows);
+        assert_eq!(
+            (f.len(), f[0].metric.as_str(), f[0].threshold.as_str()),
+            (1, "element_iters", "<= 1.05 x baseline 1000")
+        );
     }
 
     /// A run made with other settings than the baseline's (its `settings_sha256` differs) is

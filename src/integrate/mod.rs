@@ -202,15 +202,63 @@ fn is_zero(x: &u64) -> bool {
     *x == 0
 }
 
+/// One counter of [`Stats`]: its key (in the summary's `stats`, a gate's `metric`, a
+/// report's column), its field, what it counts, and which consumers treat it as a cost.
+#[derive(Debug, Clone, Copy)]
+pub struct Counter {
+    pub name: &'static str,
+    pub get: fn(&Stats) -> u64,
+    pub get_mut: fn(&mut Stats) -> &mut u64,
+    /// What one unit is (docs/schemas.md's `stats` table).
+    pub counts: &'static str,
+    /// A cost of the method, compared with the gate's baseline (`gate::regression`).
+    pub compared: bool,
+    /// A cost column of the report's variant tables and heat maps.
+    pub column: bool,
+}
+
+/// Every counter of [`Stats`], in the summary's order: a new counter is its field and one
+/// line here. Every consumer (the gate's metrics and baseline rows, the report's cost
+/// columns, the sum of segments) iterates this table.
+#[rustfmt::skip]
+pub const COUNTERS: [Counter; 6] = [
+    Counter { name: "steps", get: |s| s.steps, get_mut: |s| &mut s.steps, compared: false, column: false, counts: "accepted steps" },
+    Counter { name: "rhs_evals", get: |s| s.rhs_evals, get_mut: |s| &mut s.rhs_evals, compared: true, column: true, counts: "evaluations of the right-hand side" },
+    Counter { name: "newton_iters", get: |s| s.newton_iters, get_mut: |s| &mut s.newton_iters, compared: true, column: true, counts: "Newton iterations (implicit methods)" },
+    Counter { name: "rejected", get: |s| s.rejected, get_mut: |s| &mut s.rejected, compared: false, column: false, counts: "rejected step attempts (adaptive methods)" },
+    Counter { name: "normalizations", get: |s| s.normalizations, get_mut: |s| &mut s.normalizations, compared: false, column: false, counts: "projections or re-chartings after a step that changed the state" },
+    Counter { name: "element_iters", get: |s| s.element_iters, get_mut: |s| &mut s.element_iters, compared: true, column: false, counts: "element-level iterations inside the structure's state determinations" },
+];
+
+/// The keys of [`COUNTERS`], in its order.
+pub const COUNTER_NAMES: [&str; COUNTERS.len()] = counter_names();
+
+const fn counter_names() -> [&'static str; COUNTERS.len()] {
+    let mut names = [""; COUNTERS.len()];
+    let mut i = 0;
+    while i < COUNTERS.len() {
+        names[i] = COUNTERS[i].name;
+        i += 1;
+    }
+    names
+}
+
+impl Stats {
+    /// The counter named `name` (a key of [`COUNTERS`]), or None.
+    pub fn count(&self, name: &str) -> Option<u64> {
+        COUNTERS
+            .iter()
+            .find(|c| c.name == name)
+            .map(|c| (c.get)(self))
+    }
+}
+
 /// The counters of two runs together (a run made of segments, each its own run).
 impl std::ops::AddAssign for Stats {
     fn add_assign(&mut self, b: Stats) {
-        self.steps += b.steps;
-        self.rhs_evals += b.rhs_evals;
-        self.newton_iters += b.newton_iters;
-        self.rejected += b.rejected;
-        self.normalizations += b.normalizations;
-        self.element_iters += b.element_iters;
+        for c in &COUNTERS {
+            *(c.get_mut)(self) += (c.get)(&b);
+        }
     }
 }
 
@@ -495,4 +543,40 @@ pub trait Adaptive<S: System> {
         stats: &mut Stats,
         limits: &Limits,
     ) -> Result<(), Failure>;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The counter table is the struct: its names are the summary's `stats` keys in order,
+    /// each accessor reads and writes its own field, and the sum of two runs adds every
+    /// counter.
+    #[test]
+    fn counters_are_the_fields_of_stats() {
+        let mut s = Stats::default();
+        for (i, c) in COUNTERS.iter().enumerate() {
+            *(c.get_mut)(&mut s) = 10 + i as u64;
+        }
+        let json = serde_json::to_value(s).unwrap();
+        let mut found: Vec<&str> = json
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        found.sort_unstable();
+        let mut sorted = COUNTER_NAMES.to_vec();
+        sorted.sort_unstable();
+        assert_eq!(found, sorted);
+        for (i, c) in COUNTERS.iter().enumerate() {
+            assert_eq!(json[c.name], 10 + i as u64);
+            assert_eq!((c.get)(&s), 10 + i as u64);
+            assert_eq!(s.count(c.name), Some(10 + i as u64));
+        }
+        let mut sum = s;
+        sum += s;
+        assert!(COUNTERS.iter().all(|c| (c.get)(&sum) == 2 * (c.get)(&s)));
+        assert_eq!(s.count("wall_s"), None);
+    }
 }

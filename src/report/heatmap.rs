@@ -24,6 +24,7 @@ use std::collections::BTreeMap;
 use super::data::{CaseView, SceneView, num, step_label};
 use super::html::esc;
 use crate::gate::{GateRow, Verdict};
+use crate::integrate::COUNTERS;
 use crate::summary::{Record, Status};
 
 /// The colour ramp, best to worst: light blue, pale yellow, orange, red, dark red (its
@@ -87,12 +88,21 @@ pub struct HeatMap {
     pub rows: Vec<HeatRow>,
 }
 
-const COSTS: [&str; 3] = ["rhs_evals", "newton_iters", "wall_s"];
+/// The cost columns after a case's metrics: the work counters that are report columns
+/// (`integrate::Counter::column`), then the wall time.
+fn costs() -> impl Iterator<Item = &'static str> {
+    COUNTERS
+        .iter()
+        .filter(|c| c.column)
+        .map(|c| c.name)
+        .chain(["wall_s"])
+}
 
 fn raw(r: &Record, column: &str) -> Option<Option<f64>> {
+    if let Some(c) = COUNTERS.iter().find(|c| c.column && c.name == column) {
+        return Some(Some((c.get)(&r.stats) as f64));
+    }
     match column {
-        "rhs_evals" => Some(Some(r.stats.rhs_evals as f64)),
-        "newton_iters" => Some(Some(r.stats.newton_iters as f64)),
         "wall_s" => Some(r.wall_s.map(|w| w.min)),
         m => r.metrics.get(m).copied(),
     }
@@ -101,7 +111,7 @@ fn raw(r: &Record, column: &str) -> Option<Option<f64>> {
 /// The columns of a case with their scales over every scene.
 pub fn columns(cv: &CaseView, gates: Option<&[GateRow]>) -> Vec<HeatColumn> {
     let mut names = cv.metrics();
-    names.extend(COSTS.iter().map(|c| c.to_string()));
+    names.extend(costs().map(String::from));
     let mut ranges: BTreeMap<&str, (f64, f64)> = BTreeMap::new();
     for sv in &cv.scenes {
         for v in &sv.variants {

@@ -6,14 +6,16 @@
 //!   step, or loosest tolerance, that ran to the end; `none` when every run failed);
 //! - the matrix of a scene: one row per variant at its finest ladder point (the terminal
 //!   table's row) plus any gated run at another point; columns = the case's metrics, the
-//!   fitted order (`not asymptotic` when its local slopes disagree), RHS evaluations and wall
-//!   time. With gate rows, a gated cell is green (pass) or red (fail) and every other cell
+//!   fitted order (`not asymptotic` when its local slopes disagree), the work counters that
+//!   are report columns (`integrate::Counter::column`: RHS evaluations, Newton iterations) and
+//!   wall time. With gate rows, a gated cell is green (pass) or red (fail) and every other cell
 //!   neutral grey; without, no colour (the page's heat map, `heatmap`, colours by value);
 //! - the gate rows of the case; the `n/a` combinations grouped by reason.
 use std::collections::BTreeMap;
 
 use super::data::{self, CaseView, SceneView, VariantKey, num, step_label, time};
 use crate::gate::{GateRow, Verdict};
+use crate::integrate::COUNTERS;
 use crate::summary::{Record, Status};
 
 /// A cell's colour class.
@@ -353,16 +355,13 @@ pub fn matrix(cv: &CaseView, sv: &SceneView, gates: Option<&[GateRow]>) -> Table
                 order.tone = Tone::Neutral;
             }
             row.push(order);
-            row.push(Cell {
-                text: r.stats.rhs_evals.to_string(),
-                tone: tone(gates, &matched, "rhs_evals"),
-                full: None,
-            });
-            row.push(Cell {
-                text: r.stats.newton_iters.to_string(),
-                tone: tone(gates, &matched, "newton_iters"),
-                full: None,
-            });
+            for c in COUNTERS.iter().filter(|c| c.column) {
+                row.push(Cell {
+                    text: (c.get)(&r.stats).to_string(),
+                    tone: tone(gates, &matched, c.name),
+                    full: None,
+                });
+            }
             row.push(Cell {
                 text: opt(r.wall_s.map(|w| w.min)),
                 tone: if gates.is_some() {
@@ -379,7 +378,14 @@ pub fn matrix(cv: &CaseView, sv: &SceneView, gates: Option<&[GateRow]>) -> Table
         .map(String::from)
         .to_vec();
     header.extend(metrics.iter().cloned());
-    header.extend(["order", "rhs_evals", "newton_iters", "wall_s"].map(String::from));
+    header.push("order".into());
+    header.extend(
+        COUNTERS
+            .iter()
+            .filter(|c| c.column)
+            .map(|c| c.name.to_string()),
+    );
+    header.push("wall_s".into());
     Table {
         kind: "matrix",
         title: format!("{} / {}: variants x metrics", cv.name, sv.name),

@@ -413,21 +413,49 @@ fn random_tangent<T: Vector>(rng: &mut Rng, s: f64) -> T {
 fn check_chart<C: Probe>() {
     let mut rng = Rng(0x5EED ^ C::NAME.len() as u64);
     let x = rng.vec3(2.0);
+    let (e_rand, dx_rand, e_spec, dx_spec, min_cond) = check_rotation_round_trip::<C>(&x);
+    let e_back = check_chart_round_trip::<C>();
+    // The points of the remaining checks: random and special rotations at `x`, and the
+    // chart's own on-manifold samples.
+    let mut points: Vec<C::Coords> = random_rotations(40, 11)
+        .iter()
+        .chain(special_rotations().iter())
+        .map(|r| C::from_pose(r, &x))
+        .collect();
+    points.extend(C::samples().into_iter().filter(|c| on_manifold::<C>(c)));
+    let (e_dir, e_sup, n_sup) = check_kinematic_map::<C>(&points, &mut rng);
+    check_zero_retract::<C>(&points);
+    let e_norm = check_normalize::<C>(&points, &mut rng);
+    let e_rkmk = check_dexp_inv::<C>(&points, &mut rng);
+    println!(
+        "{:12} R->c->R rand {e_rand:.1e} special {e_spec:.1e} (x {:.1e}) | c->R->c {e_back:.1e} | \
+         kin dir {e_dir:.1e} sup {e_sup:.1e} ({n_sup} near-sing) | normalize {e_norm:.1e} | \
+         rkmk {e_rkmk:.1e} | min cond {min_cond:.1e}",
+        C::NAME,
+        dx_rand.max(dx_spec)
+    );
+}
 
-    // 1. R -> chart -> R.
-    let (e_rand, dx_rand) = round_trip_rotations::<C>(&random_rotations(500, 7), &x);
-    let (e_spec, dx_spec) = round_trip_rotations::<C>(&special_rotations(), &x);
+/// Check 1: R -> chart -> R over random and special rotations (errors of R and of the position),
+/// and the smallest conditioning over the special ones: below 1e-15 for the Euler charts
+/// (they reach their singularity), at least 1/2 for the others.
+fn check_rotation_round_trip<C: Probe>(x: &Vector3<f64>) -> (f64, f64, f64, f64, f64) {
+    let (e_rand, dx_rand) = round_trip_rotations::<C>(&random_rotations(500, 7), x);
+    let (e_spec, dx_spec) = round_trip_rotations::<C>(&special_rotations(), x);
     let min_cond = special_rotations()
         .iter()
-        .map(|r| C::conditioning(&C::from_pose(r, &x)))
+        .map(|r| C::conditioning(&C::from_pose(r, x)))
         .fold(f64::INFINITY, f64::min);
     match C::NAME {
         "euler_xyz" | "euler_zyx" | "euler_zxz" => assert!(min_cond < 1e-15, "{min_cond}"),
         _ => assert!(min_cond >= 0.5 - 1e-15, "{}: {min_cond}", C::NAME),
     }
+    (e_rand, dx_rand, e_spec, dx_spec, min_cond)
+}
 
-    // 2. chart -> R -> chart, compared as rotations (on-manifold samples; the others' R is
-    // not a rotation).
+/// Check 2: chart -> R -> chart, compared as rotations (on-manifold samples; the others' R is not
+/// a rotation); returns the largest geodesic error.
+fn check_chart_round_trip<C: Probe>() -> f64 {
     let mut e_back = 0.0_f64;
     for c in C::samples() {
         if !on_manifold::<C>(&c) {
@@ -440,16 +468,15 @@ fn check_chart<C: Probe>() {
         assert!((C::position(&c2) - C::position(&c)).amax() <= 8.0 * EPS * 3.0);
         e_back = e_back.max(g);
     }
+    e_back
+}
 
-    // 3. Kinematic map vs central differences.
-    let mut points: Vec<C::Coords> = random_rotations(40, 11)
-        .iter()
-        .chain(special_rotations().iter())
-        .map(|r| C::from_pose(r, &x))
-        .collect();
-    points.extend(C::samples().into_iter().filter(|c| on_manifold::<C>(c)));
+/// Check 3: The kinematic map against central differences, direct (conditioning at least 0.1) and
+/// superposed (at least 1e-7; an Euler chart must reach a near-singular point); returns the
+/// largest errors and the near-singular points reached.
+fn check_kinematic_map<C: Probe>(points: &[C::Coords], rng: &mut Rng) -> (f64, f64, usize) {
     let (mut e_dir, mut e_sup, mut n_sup) = (0.0_f64, 0.0_f64, 0);
-    for c in &points {
+    for c in points {
         let cond = C::conditioning(c);
         for spatial in [false, true] {
             let omega = rng.vec3(1.0);
@@ -481,21 +508,27 @@ fn check_chart<C: Probe>() {
             "no near-singular point reached the superposed check"
         );
     }
+    (e_dir, e_sup, n_sup)
+}
 
-    // 4. Retract by zero is the identity, exactly.
-    for c in &points {
+/// Check 4: Retract by zero is the identity, exactly.
+fn check_zero_retract<C: Probe>(points: &[C::Coords]) {
+    for c in points {
         for spatial in [false, true] {
             let c2 = C::retract(c, &C::Tangent::zero(), spatial);
             assert_eq!(max_abs_diff(&c.flat(), &c2.flat()), 0.0, "{}", C::NAME);
         }
     }
+}
 
-    // 5. normalize: idempotent to 4 eps, keeps an on-manifold rotation, reports itself.
+/// Check 5: normalize: idempotent to 4 eps, keeps an on-manifold rotation, reports itself;
+/// returns the largest rotation it moved.
+fn check_normalize<C: Probe>(points: &[C::Coords], rng: &mut Rng) -> f64 {
     let mut e_norm = 0.0_f64;
     let mut candidates = C::samples();
     for c in points.iter().take(20) {
-        candidates.push(C::retract(c, &random_tangent(&mut rng, 0.3), false));
-        candidates.push(C::retract(c, &random_tangent(&mut rng, 3.0), true));
+        candidates.push(C::retract(c, &random_tangent(rng, 0.3), false));
+        candidates.push(C::retract(c, &random_tangent(rng, 3.0), true));
     }
     for c in candidates {
         let mut c1 = c;
@@ -519,17 +552,20 @@ fn check_chart<C: Probe>() {
         let d = max_abs_diff(&f1, &f2);
         assert!(d <= 4.0 * EPS * scale, "{}: not idempotent, {d:e}", C::NAME);
     }
+    e_norm
+}
 
-    // 6. dexp_inv(0, v) = v; RKMK identity on Lie charts.
+/// Check 6: dexp_inv(0, v) = v; the RKMK identity on Lie charts; returns its largest error.
+fn check_dexp_inv<C: Probe>(points: &[C::Coords], rng: &mut Rng) -> f64 {
     let mut e_rkmk = 0.0_f64;
     for spatial in [false, true] {
-        let v: C::Tangent = random_tangent(&mut rng, 1.0);
+        let v: C::Tangent = random_tangent(rng, 1.0);
         let w = C::dexp_inv(&C::Tangent::zero(), &v, spatial);
         assert_eq!(w.minus(&v).norm_inf(), 0.0);
         if C::LIE {
             for c in points.iter().take(20) {
-                let theta0: C::Tangent = random_tangent(&mut rng, 1.5);
-                let u: C::Tangent = random_tangent(&mut rng, 1.0);
+                let theta0: C::Tangent = random_tangent(rng, 1.5);
+                let u: C::Tangent = random_tangent(rng, 1.0);
                 let e = rkmk_error::<C>(c, &theta0, &u, spatial);
                 assert!(
                     e <= 1e-8,
@@ -540,14 +576,7 @@ fn check_chart<C: Probe>() {
             }
         }
     }
-
-    println!(
-        "{:12} R->c->R rand {e_rand:.1e} special {e_spec:.1e} (x {:.1e}) | c->R->c {e_back:.1e} | \
-         kin dir {e_dir:.1e} sup {e_sup:.1e} ({n_sup} near-sing) | normalize {e_norm:.1e} | \
-         rkmk {e_rkmk:.1e} | min cond {min_cond:.1e}",
-        C::NAME,
-        dx_rand.max(dx_spec)
-    );
+    e_rkmk
 }
 
 /// proptest strategy: a unit quaternion from four uniform numbers (norm above 0.1).

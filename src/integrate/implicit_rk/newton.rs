@@ -119,7 +119,67 @@ impl<S: System> ImplicitRk<S> {
         guess: Guess,
         iters: &mut u32,
     ) -> Result<(), Failure> {
-        let (n, s) = (self.n, self.tab.s);
+        let f0 = self.prepare_matrix(sys, t, h, x, stats, fresh)?;
+        self.initial_guess(sys, t, h, x, stats, guess, f0)?;
+        let eps = f64::EPSILON;
+        let mut stop = StopTests::new();
+        let mut residual = f64::NAN;
+        let mut dz = f64::NAN;
+        let mut tol = f64::NAN;
+        for k in 1..=self.opts.max_iters {
+            stats.newton_iters += 1;
+            let scale;
+            (residual, dz, scale) = match self.iterate(sys, t, h, x, stats, k) {
+                Ok(v) => v,
+                Err(e) => {
+                    *iters += k;
+                    return Err(e);
+                }
+            };
+            tol = self.opts.tol_factor * eps * scale;
+            match stop.judge(dz, tol, 1e3 * eps * scale) {
+                Next::Iterate => continue,
+                Next::Converged => {}
+                Next::Stagnated => self.stagnations += 1,
+                Next::Diverged => {
+                    *iters += k;
+                    return Err(Failure::new(
+                        FailureKind::NewtonFailure,
+                        t,
+                        format!(
+                            "Newton diverges at iterate {k} (t = {t}): update {dz:.3e}, \
+                             residual {residual:.3e}"
+                        ),
+                    ));
+                }
+            }
+            *iters += k;
+            return Ok(());
+        }
+        *iters += self.opts.max_iters;
+        Err(Failure::new(
+            FailureKind::NewtonFailure,
+            t,
+            format!(
+                "Newton did not converge in {} iterations (t = {t}): update {dz:.3e} > \
+                 {tol:.3e}, residual {residual:.3e}",
+                self.opts.max_iters
+            ),
+        ))
+    }
+
+    /// The Jacobian (when `fresh` or none is valid) and the factored iteration matrix for
+    /// `h`; returns `f(t, x)` when the Jacobian was evaluated.
+    #[inline]
+    fn prepare_matrix(
+        &mut self,
+        sys: &S,
+        t: f64,
+        h: f64,
+        x: &S::State,
+        stats: &mut Stats,
+        fresh: bool,
+    ) -> Result<Option<S::Tangent>, Failure> {
         let mut f0 = None;
         if fresh || !self.jac_valid {
             f0 = Some(self.jacobian(sys, t, x, stats)?);
@@ -127,6 +187,25 @@ impl<S: System> ImplicitRk<S> {
         if self.lu_h != h || !self.lu.is_factored() {
             self.factor(t, h)?;
         }
+        Ok(f0)
+    }
+
+    /// The stage increments `self.z` the iteration starts from: the previous step's
+    /// collocation polynomial extrapolated, or the explicit predictor `Z_i = c_i h f(t, x)`
+    /// (`f0`, when the Jacobian already evaluated it).
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn initial_guess(
+        &mut self,
+        sys: &S,
+        t: f64,
+        h: f64,
+        x: &S::State,
+        stats: &mut Stats,
+        guess: Guess,
+        f0: Option<S::Tangent>,
+    ) -> Result<(), Failure> {
+        let s = self.tab.s;
         match guess {
             Guess::Extrapolated => {
                 // Z_i = Theta(1 + r c_i) - Theta(1), Theta the previous collocation polynomial.
@@ -160,111 +239,157 @@ impl<S: System> ImplicitRk<S> {
                 }
             }
         }
-        let eps = f64::EPSILON;
-        let mut prev = f64::INFINITY;
-        let mut stalled = 0;
-        let mut grown = 0;
-        let mut residual = f64::NAN;
-        let mut dz = f64::NAN;
-        let mut tol = f64::NAN;
-        for k in 1..=self.opts.max_iters {
-            stats.newton_iters += 1;
-            for j in 0..s {
-                self.f[j] = Self::stage_rate(sys, t + self.tab.c[j] * h, x, &self.z[j], stats);
-                if !self.f[j].is_finite() {
-                    *iters += k;
-                    return Err(Failure::new(
-                        FailureKind::NonFinite,
-                        t,
-                        format!(
-                            "right-hand side non-finite at stage {j} of Newton iterate {k} \
-                             (t = {t})"
-                        ),
-                    ));
-                }
-            }
-            // -G_i = h sum_j a_ij F_j - Z_i.
-            residual = 0.0;
-            for i in 0..s {
-                let mut g = self.z[i].scaled(-1.0);
-                for j in 0..s {
-                    g.axpy(h * self.tab.a[i][j], &self.f[j]);
-                }
-                residual = residual.max(g.norm_inf());
-                g.write_to(&mut self.buf[i * n..(i + 1) * n]);
-            }
-            if let Err(e) = self.lu.solve(&mut self.buf) {
-                *iters += k;
-                return Err(Failure::new(FailureKind::NewtonFailure, t, e.to_string()));
-            }
-            dz = self.buf.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-            if !dz.is_finite() {
-                *iters += k;
+        Ok(())
+    }
+
+    /// Newton iterate `k`: the stage rates at `self.z`, the update solved from the residual
+    /// and added to `self.z`. Returns (residual, update, scale), the max-norms of `-G` and
+    /// `dZ` and the scale of the convergence test.
+    #[inline]
+    fn iterate(
+        &mut self,
+        sys: &S,
+        t: f64,
+        h: f64,
+        x: &S::State,
+        stats: &mut Stats,
+        k: u32,
+    ) -> Result<(f64, f64, f64), Failure> {
+        self.stage_rates(sys, t, h, x, stats, k)?;
+        let residual = self.solve_update(t, h)?;
+        let dz = self.buf.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        if !dz.is_finite() {
+            return Err(Failure::new(
+                FailureKind::NewtonFailure,
+                t,
+                format!(
+                    "non-finite Newton update at iterate {k} (t = {t}), residual {residual:.3e}"
+                ),
+            ));
+        }
+        let zmax = self.add_update();
+        let scale = if self.opts.increment_relative {
+            zmax
+        } else {
+            self.base_scale().max(zmax)
+        };
+        Ok((residual, dz, scale))
+    }
+
+    /// `self.f[j] = F(Z_j)` at the stage times; a non-finite rate fails.
+    #[inline]
+    fn stage_rates(
+        &mut self,
+        sys: &S,
+        t: f64,
+        h: f64,
+        x: &S::State,
+        stats: &mut Stats,
+        k: u32,
+    ) -> Result<(), Failure> {
+        for j in 0..self.tab.s {
+            self.f[j] = Self::stage_rate(sys, t + self.tab.c[j] * h, x, &self.z[j], stats);
+            if !self.f[j].is_finite() {
                 return Err(Failure::new(
-                    FailureKind::NewtonFailure,
+                    FailureKind::NonFinite,
                     t,
                     format!(
-                        "non-finite Newton update at iterate {k} (t = {t}), residual {residual:.3e}"
+                        "right-hand side non-finite at stage {j} of Newton iterate {k} (t = {t})"
                     ),
                 ));
             }
-            let mut zmax = 0.0_f64;
-            for i in 0..s {
-                let d = S::Tangent::read_from(&self.buf[i * n..(i + 1) * n]);
-                self.z[i].axpy(1.0, &d);
-                zmax = zmax.max(self.z[i].norm_inf());
-            }
-            let scale = if self.opts.increment_relative {
-                zmax
-            } else {
-                self.base_scale().max(zmax)
-            };
-            tol = self.opts.tol_factor * eps * scale;
-            if dz <= tol {
-                *iters += k;
-                return Ok(());
-            }
-            // Stagnation: inside the band (tol, 1e3 eps], count the iterations that do not
-            // halve the update; leaving the band resets the count.
-            if dz <= 1e3 * eps * scale {
-                if dz >= 0.5 * prev {
-                    stalled += 1;
-                    if stalled >= 3 {
-                        *iters += k;
-                        self.stagnations += 1;
-                        return Ok(());
-                    }
-                }
-            } else {
-                stalled = 0;
-            }
-            if dz > prev && dz > 1e3 * eps * scale {
-                grown += 1;
-                if grown >= 2 {
-                    *iters += k;
-                    return Err(Failure::new(
-                        FailureKind::NewtonFailure,
-                        t,
-                        format!(
-                            "Newton diverges at iterate {k} (t = {t}): update {dz:.3e}, \
-                             residual {residual:.3e}"
-                        ),
-                    ));
-                }
-            } else {
-                grown = 0;
-            }
-            prev = dz;
         }
-        *iters += self.opts.max_iters;
-        Err(Failure::new(
-            FailureKind::NewtonFailure,
-            t,
-            format!(
-                "Newton did not converge in {} iterations (t = {t}): update {dz:.3e} > \
-                 {tol:.3e}, residual {residual:.3e}",
-                self.opts.max_iters
-            ),
-        ))
+        Ok(())
+    }
+
+    /// Writes `-G_i = h sum_j a_ij F_j - Z_i` into `self.buf` and solves `M dZ = -G` in
+    /// place; returns the residual's max-norm.
+    #[inline]
+    fn solve_update(&mut self, t: f64, h: f64) -> Result<f64, Failure> {
+        let (n, s) = (self.n, self.tab.s);
+        let mut residual = 0.0_f64;
+        for i in 0..s {
+            let mut g = self.z[i].scaled(-1.0);
+            for j in 0..s {
+                g.axpy(h * self.tab.a[i][j], &self.f[j]);
+            }
+            residual = residual.max(g.norm_inf());
+            g.write_to(&mut self.buf[i * n..(i + 1) * n]);
+        }
+        self.lu
+            .solve(&mut self.buf)
+            .map_err(|e| Failure::new(FailureKind::NewtonFailure, t, e.to_string()))?;
+        Ok(residual)
+    }
+
+    /// `Z += dZ` (`self.buf`); returns the new `max_i |Z_i|`.
+    #[inline]
+    fn add_update(&mut self) -> f64 {
+        let n = self.n;
+        let mut zmax = 0.0_f64;
+        for i in 0..self.tab.s {
+            let d = S::Tangent::read_from(&self.buf[i * n..(i + 1) * n]);
+            self.z[i].axpy(1.0, &d);
+            zmax = zmax.max(self.z[i].norm_inf());
+        }
+        zmax
+    }
+}
+
+/// What an iterate's update says about the Newton iteration.
+enum Next {
+    Iterate,
+    Converged,
+    /// At the noise floor: accepted.
+    Stagnated,
+    Diverged,
+}
+
+/// The convergence, stagnation and divergence tests over the updates of one attempt.
+struct StopTests {
+    /// The previous update's max-norm.
+    prev: f64,
+    stalled: u32,
+    grown: u32,
+}
+
+impl StopTests {
+    fn new() -> Self {
+        StopTests {
+            prev: f64::INFINITY,
+            stalled: 0,
+            grown: 0,
+        }
+    }
+
+    /// Judges the update `dz` against the tolerance `tol` and the noise band's top `band`
+    /// (`1e3 eps` x scale).
+    #[inline]
+    fn judge(&mut self, dz: f64, tol: f64, band: f64) -> Next {
+        if dz <= tol {
+            return Next::Converged;
+        }
+        // Stagnation: inside the band (tol, 1e3 eps], count the iterations that do not
+        // halve the update; leaving the band resets the count.
+        if dz <= band {
+            if dz >= 0.5 * self.prev {
+                self.stalled += 1;
+                if self.stalled >= 3 {
+                    return Next::Stagnated;
+                }
+            }
+        } else {
+            self.stalled = 0;
+        }
+        if dz > self.prev && dz > band {
+            self.grown += 1;
+            if self.grown >= 2 {
+                return Next::Diverged;
+            }
+        } else {
+            self.grown = 0;
+        }
+        self.prev = dz;
+        Next::Iterate
     }
 }

@@ -455,6 +455,9 @@ fn columns(s: &[ColumnObs]) -> Columns {
     }
 }
 
+/// A run's named tracks beside its series (`Series::tracks`).
+type Tracks = std::collections::BTreeMap<String, Vec<Option<f64>>>;
+
 impl FiberProblem {
     /// The scores and series of a run.
     fn score(&self, out: &RunOut) -> (Scores, Series) {
@@ -467,155 +470,123 @@ impl FiberProblem {
             .as_ref()
             .map(|f| format!("run failed ({}) at t = {}", f.kind.name(), f.t));
         let kind = self.loading().kind();
-        // The equilibrium check.
-        match &failed {
-            Some(why) => s.null("equilibrium_residual_max", why.clone()),
-            None => {
-                let r = scored
-                    .iter()
-                    .filter_map(|o| o.equilibrium_residual)
-                    .fold(0.0f64, f64::max);
-                s.set(
-                    "equilibrium_residual_max",
-                    r / out.peak_load.max(f64::MIN_POSITIVE),
-                );
-            }
-        }
+        equilibrium_check(&mut s, &scored, out, &failed);
         let reference = self.reference_track();
-        let mut primary_error = None;
-        let mut tracks = std::collections::BTreeMap::new();
-        let l = self.setup.case.height;
-        let mismatch = reference.as_ref().and_then(|r| {
-            (r.t.len() != scored.len()).then(|| {
-                format!(
-                    "run has {} score points, reference {}",
-                    scored.len(),
-                    r.t.len()
-                )
-            })
-        });
-        let why = failed.clone().or(mismatch).or_else(|| {
-            reference
-                .is_none()
-                .then(|| "no reference attached".to_string())
-        });
-        match (kind, &why, &reference) {
+        let mut tracks = Tracks::new();
+        let why = why_unscored(&failed, reference.as_ref(), scored.len());
+        let primary_error = match (kind, &why, &reference) {
             ("static", None, Some(r)) => {
-                let e: Vec<f64> = scored
-                    .iter()
-                    .enumerate()
-                    .map(|(k, o)| {
-                        (o.top_displacement - r.columns[0][k])
-                            .hypot(o.top_axial - r.columns[1][k])
-                            / l
-                    })
-                    .collect();
-                s.set("tip_error", *e.last().unwrap_or(&f64::NAN));
-                s.set("tip_error_max", e.iter().copied().fold(0.0, f64::max));
-                primary_error = Some(e);
+                Some(score_static(&mut s, &scored, r, self.setup.case.height))
             }
-            ("dynamic", None, Some(r)) => {
-                let u_ref = r.column("top_displacement");
-                let peak_ref = u_ref.iter().fold(0.0f64, |p, x| p.max(x.abs()));
-                let d: Vec<f64> = scored
-                    .iter()
-                    .zip(u_ref)
-                    .map(|(o, x)| (o.top_displacement - x).abs() / peak_ref)
-                    .collect();
-                let peak = scored
-                    .iter()
-                    .fold(0.0f64, |p, o| p.max(o.top_displacement.abs()));
-                s.set("top_displacement_error_max", d.iter().copied().fold(0.0, f64::max));
-                s.set("peak_displacement_error", (peak - peak_ref).abs() / peak_ref);
-                s.set("residual_displacement_error", *d.last().unwrap_or(&f64::NAN));
-                let v_ref = r.column("base_shear");
-                let peak_v = v_ref.iter().fold(0.0f64, |p, x| p.max(x.abs()));
-                let dv: Vec<f64> = scored
-                    .iter()
-                    .zip(v_ref)
-                    .map(|(o, x)| (o.base_shear - x).abs() / peak_v)
-                    .collect();
-                let rms = (dv.iter().map(|x| x * x).sum::<f64>() / dv.len() as f64).sqrt();
-                s.set("base_shear_error_rms", rms);
-                s.set("base_shear_error_max", dv.iter().copied().fold(0.0, f64::max));
-                if self.primary_metric == "top_displacement_error_max" {
-                    primary_error = Some(d);
-                }
-                tracks.insert(
-                    "base_shear_reference".to_string(),
-                    v_ref.iter().map(|x| Some(*x)).collect(),
-                );
-            }
-            (_, None, Some(r)) => {
-                let v_ref = r.column("base_shear");
-                let peak = v_ref.iter().fold(0.0f64, |p, x| p.max(x.abs()));
-                let d: Vec<f64> = scored
-                    .iter()
-                    .zip(v_ref)
-                    .map(|(o, x)| (o.base_shear - x).abs() / peak)
-                    .collect();
-                let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt();
-                s.set("base_shear_error_rms", rms);
-                s.set("base_shear_error_max", d.iter().copied().fold(0.0, f64::max));
-                let col = |f: fn(&ColumnObs) -> f64| scored.iter().map(|o| f(o)).collect::<Vec<_>>();
-                let w = input_work(
-                    &col(|o| o.top_displacement),
-                    &col(|o| o.top_axial),
-                    &col(|o| o.base_shear),
-                    &col(|o| o.axial_force),
-                );
-                let w_ref = input_work(
-                    r.column("top_displacement"),
-                    r.column("top_axial"),
-                    v_ref,
-                    r.column("axial_force"),
-                );
-                s.set("dissipated_energy_error", ((w - w_ref) / w_ref).abs());
-                if self.primary_metric.starts_with("base_shear") {
-                    primary_error = Some(d);
-                }
-                tracks.insert(
-                    "base_shear_reference".to_string(),
-                    v_ref.iter().map(|x| Some(*x)).collect(),
-                );
-            }
-            _ => {}
-        }
-        let why = why.unwrap_or_default();
-        // The metrics of the scene's kind: those not computed are null with the reason;
-        // those of the other kinds do not apply and are absent (never 0).
-        let applies: &[&str] = match kind {
-            "static" => &["tip_error", "tip_error_max", "equilibrium_residual_max"],
-            "cyclic" => &[
-                "base_shear_error_rms",
-                "base_shear_error_max",
-                "dissipated_energy_error",
-                "equilibrium_residual_max",
-            ],
-            _ => &[
-                "top_displacement_error_max",
-                "peak_displacement_error",
-                "residual_displacement_error",
-                "base_shear_error_rms",
-                "base_shear_error_max",
-                "energy_balance_error_max",
-            ],
+            ("dynamic", None, Some(r)) => self.score_dynamic(&mut s, &scored, r, &mut tracks),
+            (_, None, Some(r)) => self.score_cyclic(&mut s, &scored, r, &mut tracks),
+            _ => None,
         };
+        self.close_scores(&mut s, out, kind, &failed, why.unwrap_or_default());
+        let series = self.series(&scored, kind, reference.as_ref(), tracks, primary_error);
+        (s, series)
+    }
+
+    /// The dynamic scene's displacement and base-shear errors against `r`; returns the
+    /// primary error track when the primary metric is the displacement's.
+    fn score_dynamic(
+        &self,
+        s: &mut Scores,
+        scored: &[&ColumnObs],
+        r: &Track,
+        tracks: &mut Tracks,
+    ) -> Option<Vec<f64>> {
+        let u_ref = r.column("top_displacement");
+        let peak_ref = u_ref.iter().fold(0.0f64, |p, x| p.max(x.abs()));
+        let d: Vec<f64> = scored
+            .iter()
+            .zip(u_ref)
+            .map(|(o, x)| (o.top_displacement - x).abs() / peak_ref)
+            .collect();
+        let peak = scored
+            .iter()
+            .fold(0.0f64, |p, o| p.max(o.top_displacement.abs()));
+        s.set("top_displacement_error_max", d.iter().copied().fold(0.0, f64::max));
+        s.set("peak_displacement_error", (peak - peak_ref).abs() / peak_ref);
+        s.set("residual_displacement_error", *d.last().unwrap_or(&f64::NAN));
+        let v_ref = r.column("base_shear");
+        base_shear_errors(s, scored, v_ref);
+        tracks.insert(
+            "base_shear_reference".to_string(),
+            v_ref.iter().map(|x| Some(*x)).collect(),
+        );
+        (self.primary_metric == "top_displacement_error_max").then_some(d)
+    }
+
+    /// The cyclic scene's base-shear and dissipated-energy errors against `r`; returns the
+    /// primary error track when the primary metric is a base-shear one.
+    fn score_cyclic(
+        &self,
+        s: &mut Scores,
+        scored: &[&ColumnObs],
+        r: &Track,
+        tracks: &mut Tracks,
+    ) -> Option<Vec<f64>> {
+        let v_ref = r.column("base_shear");
+        let d = base_shear_errors(s, scored, v_ref);
+        let col = |f: fn(&ColumnObs) -> f64| scored.iter().map(|o| f(o)).collect::<Vec<_>>();
+        let w = input_work(
+            &col(|o| o.top_displacement),
+            &col(|o| o.top_axial),
+            &col(|o| o.base_shear),
+            &col(|o| o.axial_force),
+        );
+        let w_ref = input_work(
+            r.column("top_displacement"),
+            r.column("top_axial"),
+            v_ref,
+            r.column("axial_force"),
+        );
+        s.set("dissipated_energy_error", ((w - w_ref) / w_ref).abs());
+        tracks.insert(
+            "base_shear_reference".to_string(),
+            v_ref.iter().map(|x| Some(*x)).collect(),
+        );
+        self.primary_metric.starts_with("base_shear").then_some(d)
+    }
+
+    /// The scene kind's metrics not computed become null with `why` (the dynamic scene's
+    /// energy balance from the run's books); the other kinds' metrics stay absent.
+    fn close_scores(
+        &self,
+        s: &mut Scores,
+        out: &RunOut,
+        kind: &str,
+        failed: &Option<String>,
+        why: String,
+    ) {
         if kind == "dynamic" {
             s.values.remove("equilibrium_residual_max");
             s.reasons.remove("equilibrium_residual_max");
-            match (&out.balance_max, &failed) {
+            match (&out.balance_max, failed) {
                 (Some(b), None) => s.set("energy_balance_error_max", b / self.energy_scale),
                 (_, Some(f)) => s.null("energy_balance_error_max", f.clone()),
                 (None, None) => s.null("energy_balance_error_max", "no energy books"),
             }
         }
-        for m in applies {
+        for m in applicable_metrics(kind) {
             if !s.values.contains_key(*m) {
                 s.null(m, why.clone());
             }
         }
-        if let Some(r) = &reference {
+    }
+
+    /// The run's series at the score points: the tracks of the top displacement and base
+    /// shear (and the reference's), the dynamic scene's energy balance residual.
+    fn series(
+        &self,
+        scored: &[&ColumnObs],
+        kind: &str,
+        reference: Option<&Track>,
+        mut tracks: Tracks,
+        primary_error: Option<Vec<f64>>,
+    ) -> Series {
+        if let Some(r) = reference {
             tracks.insert(
                 "top_displacement_reference".to_string(),
                 r.columns[0].iter().map(|x| Some(*x)).collect(),
@@ -629,7 +600,7 @@ impl FiberProblem {
             "base_shear".to_string(),
             scored.iter().map(|o| Some(o.base_shear)).collect(),
         );
-        let series = Series {
+        Series {
             t: scored.iter().map(|o| o.t).collect(),
             // The balance's residual where the scene keeps energy books (the pulse; the
             // report's `Quantity::Balance`), else none.
@@ -647,7 +618,88 @@ impl FiberProblem {
             primary_error,
             primary_metric: self.primary_metric.clone(),
             tracks,
-        };
-        (s, series)
+        }
+    }
+}
+
+/// The equilibrium check: the largest residual over the score points relative to the peak
+/// load, or null when the run failed.
+fn equilibrium_check(s: &mut Scores, scored: &[&ColumnObs], out: &RunOut, failed: &Option<String>) {
+    match failed {
+        Some(why) => s.null("equilibrium_residual_max", why.clone()),
+        None => {
+            let r = scored
+                .iter()
+                .filter_map(|o| o.equilibrium_residual)
+                .fold(0.0f64, f64::max);
+            s.set(
+                "equilibrium_residual_max",
+                r / out.peak_load.max(f64::MIN_POSITIVE),
+            );
+        }
+    }
+}
+
+/// Why the reference errors cannot be scored: the run failed, its score points are not the
+/// reference's, or there is no reference; None when they can.
+fn why_unscored(failed: &Option<String>, reference: Option<&Track>, n: usize) -> Option<String> {
+    let mismatch = reference.and_then(|r| {
+        (r.t.len() != n).then(|| format!("run has {n} score points, reference {}", r.t.len()))
+    });
+    failed.clone().or(mismatch).or_else(|| {
+        reference
+            .is_none()
+            .then(|| "no reference attached".to_string())
+    })
+}
+
+/// The base shear's error against `v_ref` relative to its peak at every score point, its
+/// RMS and maximum set as scores.
+fn base_shear_errors(s: &mut Scores, scored: &[&ColumnObs], v_ref: &[f64]) -> Vec<f64> {
+    let peak = v_ref.iter().fold(0.0f64, |p, x| p.max(x.abs()));
+    let d: Vec<f64> = scored
+        .iter()
+        .zip(v_ref)
+        .map(|(o, x)| (o.base_shear - x).abs() / peak)
+        .collect();
+    let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt();
+    s.set("base_shear_error_rms", rms);
+    s.set("base_shear_error_max", d.iter().copied().fold(0.0, f64::max));
+    d
+}
+
+/// The static scene's tip error against `r`, relative to the column's height `l`, at every
+/// score point (the primary error track).
+fn score_static(s: &mut Scores, scored: &[&ColumnObs], r: &Track, l: f64) -> Vec<f64> {
+    let e: Vec<f64> = scored
+        .iter()
+        .enumerate()
+        .map(|(k, o)| {
+            (o.top_displacement - r.columns[0][k]).hypot(o.top_axial - r.columns[1][k]) / l
+        })
+        .collect();
+    s.set("tip_error", *e.last().unwrap_or(&f64::NAN));
+    s.set("tip_error_max", e.iter().copied().fold(0.0, f64::max));
+    e
+}
+
+/// The metrics of a scene kind (the others' do not apply and are absent, never 0).
+fn applicable_metrics(kind: &str) -> &'static [&'static str] {
+    match kind {
+        "static" => &["tip_error", "tip_error_max", "equilibrium_residual_max"],
+        "cyclic" => &[
+            "base_shear_error_rms",
+            "base_shear_error_max",
+            "dissipated_energy_error",
+            "equilibrium_residual_max",
+        ],
+        _ => &[
+            "top_displacement_error_max",
+            "peak_displacement_error",
+            "residual_displacement_error",
+            "base_shear_error_rms",
+            "base_shear_error_max",
+            "energy_balance_error_max",
+        ],
     }
 }
