@@ -13,7 +13,7 @@ use super::chart::{MatrixProj, QuatProj, RotationChart, Rotvec, So3};
 use super::column::Algorithm;
 use super::problem::FiberProblem;
 use super::dynamic::Scheme;
-use super::run::{Form, Keep, RunOut, Setup, run_static};
+use super::run::{Form, Keep, RunOut, ColumnSetup, run_static};
 use super::run_dynamic::run_dynamic;
 use crate::case::{Case, CaseError, Scene};
 use crate::integrate::{MethodInfo, MethodKind};
@@ -268,7 +268,7 @@ fn static_na_reason(param: &str, integrator: &str, formulation: &str) -> String 
 }
 
 /// A monomorphised run.
-pub type RunFn = fn(&Setup, f64, Keep) -> Result<RunOut, String>;
+pub type RunFn = fn(&ColumnSetup, f64, Keep) -> Result<RunOut, String>;
 
 /// The facts of an algorithm: implicit, structural, order 2 (the dynamic schemes' order,
 /// `dynamic_tests.rs`; for a static algorithm only the step ladders' class: a static path

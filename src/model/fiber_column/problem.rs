@@ -22,7 +22,7 @@ use super::family::{FAMILY, table};
 use super::opensees::{self, External};
 use super::opensees_model;
 use super::reference::{CrossCheck, ExactReference, Provenance, Track};
-use super::run::{ColumnObs, Form, Keep, RunOut, Setup};
+use super::run::{ColumnObs, Form, Keep, RunOut, ColumnSetup};
 use super::shooting::shooting_tip;
 use crate::case::{Case, CaseError, Scene};
 use crate::integrate::MethodInfo;
@@ -51,7 +51,7 @@ pub struct FiberProblem {
     settings_sha256: String,
     primary_metric: String,
     energy_scale: f64,
-    setup: Setup,
+    setup: ColumnSetup,
     ladders: Ladders,
     quick: Ladders,
     reference: Option<Attached>,
@@ -89,7 +89,7 @@ impl FiberProblem {
             settings_sha256: scene.settings_sha256.clone(),
             primary_metric: case.primary_metric.clone(),
             energy_scale: case.energy_scale,
-            setup: Setup {
+            setup: ColumnSetup {
                 case: c.clone(),
                 scene: s.clone(),
                 grid: Grid {

@@ -38,7 +38,7 @@ use crate::run::Grid;
 
 /// What a run function needs.
 #[derive(Debug, Clone)]
-pub struct Setup {
+pub struct ColumnSetup {
     pub case: ColumnCase,
     pub scene: ColumnScene,
     pub grid: Grid,
@@ -104,7 +104,7 @@ pub struct RunOut {
 }
 
 /// The column of a formulation (errors name the case key at fault).
-pub fn build<C: RotationChart>(s: &Setup, form: Form) -> Result<Column<C>, String> {
+pub fn build<C: RotationChart>(s: &ColumnSetup, form: Form) -> Result<Column<C>, String> {
     let n = &s.case.numerics;
     let (count, force) = match form {
         Form::ForceBased => (n.elements, true),
@@ -163,7 +163,7 @@ pub fn prelude_steps(loading: &Loading) -> u64 {
 /// it).
 pub(super) fn prelude<C: RotationChart>(
     col: &mut Column<C>,
-    s: &Setup,
+    s: &ColumnSetup,
     log: &mut Log,
 ) -> Result<DVector<f64>, NewtonFailure> {
     let num = &s.case.numerics;
@@ -191,7 +191,7 @@ pub(super) fn prelude<C: RotationChart>(
 
 /// The steps of a run at `dt`, checked against the grid and the case's budget: `(steps,
 /// steps per sample, steps per score)`.
-pub(super) fn steps(s: &Setup, dt: f64) -> Result<(u64, u64, u64), String> {
+pub(super) fn steps(s: &ColumnSetup, dt: f64) -> Result<(u64, u64, u64), String> {
     let g = &s.grid;
     let n = steps_dividing(g.t_end, dt)
         .ok_or_else(|| format!("the step {dt} does not divide t_end = {}", g.t_end))?;
@@ -291,7 +291,7 @@ impl Log {
 
 /// Runs a static or cyclic scene with `algorithm` at step `dt`.
 pub fn run_static<C: RotationChart>(
-    s: &Setup,
+    s: &ColumnSetup,
     form: Form,
     algorithm: Algorithm,
     dt: f64,

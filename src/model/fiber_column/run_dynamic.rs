@@ -17,11 +17,11 @@ use super::case::Loading;
 use super::chart::RotationChart;
 use super::column::Algorithm;
 use super::dynamic::{Dynamic, Scheme};
-use super::run::{ColumnObs, Form, Keep, Log, RunOut, Setup, build, failure, prelude, steps};
+use super::run::{ColumnObs, Form, Keep, Log, RunOut, ColumnSetup, build, failure, prelude, steps};
 
 /// Runs the dynamic scene with `scheme` at step `dt`.
 pub fn run_dynamic<C: RotationChart>(
-    s: &Setup,
+    s: &ColumnSetup,
     form: Form,
     scheme: Scheme,
     dt: f64,

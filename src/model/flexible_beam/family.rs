@@ -7,7 +7,7 @@
 //! and `gauss6` on the modal forms (`ode.rs`; `fe_exact`'s axial element modes, near 1e4
 //! rad/s at ten elements, make explicit methods pointless and its size is not registered
 //! there).
-use super::problem::{BeamProblem, Setup};
+use super::problem::{BeamProblem, BeamSetup};
 use crate::case::{Case, CaseError, Scene};
 use crate::integrate::MethodInfo;
 use crate::problem::figures::{
@@ -247,7 +247,7 @@ fn static_na_reason(_param: &str, integrator: &str, formulation: &str) -> String
 pub type Track = Vec<(f64, BeamObs)>;
 
 /// A monomorphised run.
-pub type RunFn = fn(&Setup, Stepping, &Observe) -> Result<RunOutput<BeamObs>, String>;
+pub type RunFn = fn(&BeamSetup, Stepping, &Observe) -> Result<RunOutput<BeamObs>, String>;
 
 fn newton() -> NewtonOptions {
     NewtonOptions::default()
@@ -255,7 +255,7 @@ fn newton() -> NewtonOptions {
 
 /// A structural method on the model `build` makes.
 fn structural<S: Beamlike, M: Method<S>>(
-    s: &Setup,
+    s: &BeamSetup,
     stepping: Stepping,
     observe: &Observe,
     build: &dyn Fn(super::base::Base) -> Result<S, String>,
@@ -278,17 +278,17 @@ fn structural<S: Beamlike, M: Method<S>>(
 }
 
 /// `fe_exact` with the case's element count.
-fn fe_model(s: &Setup) -> impl Fn(super::base::Base) -> Result<Fe, String> + '_ {
+fn fe_model(s: &BeamSetup) -> impl Fn(super::base::Base) -> Result<Fe, String> + '_ {
     move |base| Fe::new(s.scene.beam, s.numerics.elements, base)
 }
 
-fn fe_newmark(s: &Setup, st: Stepping, o: &Observe) -> Result<RunOutput<BeamObs>, String> {
+fn fe_newmark(s: &BeamSetup, st: Stepping, o: &Observe) -> Result<RunOutput<BeamObs>, String> {
     structural(s, st, o, &fe_model(s), Newmark::new(newton())?)
 }
-fn fe_hht(s: &Setup, st: Stepping, o: &Observe) -> Result<RunOutput<BeamObs>, String> {
+fn fe_hht(s: &BeamSetup, st: Stepping, o: &Observe) -> Result<RunOutput<BeamObs>, String> {
     structural(s, st, o, &fe_model(s), Hht::new(-0.05, newton())?)
 }
-fn fe_gen_alpha(s: &Setup, st: Stepping, o: &Observe) -> Result<RunOutput<BeamObs>, String> {
+fn fe_gen_alpha(s: &BeamSetup, st: Stepping, o: &Observe) -> Result<RunOutput<BeamObs>, String> {
     structural(s, st, o, &fe_model(s), GenAlpha::new(0.9, newton())?)
 }
 
@@ -303,7 +303,7 @@ fn infos() -> [(&'static str, MethodInfo); 3] {
 
 /// A modal formulation under a structural method.
 fn modal_structural<M: Method<Modal>>(
-    s: &Setup,
+    s: &BeamSetup,
     st: Stepping,
     o: &Observe,
     formulation: &str,
@@ -315,7 +315,7 @@ fn modal_structural<M: Method<Modal>>(
 
 /// A modal formulation as an ODE of the registered size `D`.
 fn ode_sized<const D: usize>(
-    s: &Setup,
+    s: &BeamSetup,
     st: Stepping,
     o: &Observe,
     formulation: &str,
@@ -337,7 +337,7 @@ fn ode_sized<const D: usize>(
 
 /// A modal formulation as an ODE, dispatched on its size (`formulations::ODE_SIZES`).
 fn ode(
-    s: &Setup,
+    s: &BeamSetup,
     st: Stepping,
     o: &Observe,
     formulation: &str,
@@ -478,7 +478,7 @@ fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {
 /// registered: its method and its score-grid track.
 /// `modal_stiffened` (the case's modes, `dop853` at tolerance 1e-10): another formulation,
 /// another integrator and no mesh.
-pub fn cross_check(s: &Setup) -> Result<(String, Result<Track, String>), String> {
+pub fn cross_check(s: &BeamSetup) -> Result<(String, Result<Track, String>), String> {
     let v = FAMILY
         .find("none", "dop853", "modal_stiffened")
         .ok_or("dop853/modal_stiffened is not registered")?;
@@ -493,7 +493,7 @@ pub fn cross_check(s: &Setup) -> Result<(String, Result<Track, String>), String>
 
 /// A run of `v` on the score grid: Err when it cannot start, Ok(Err) with the failure's
 /// kind, time and message when it failed.
-pub fn track(s: &Setup, v: &Variant, st: Stepping) -> Result<Result<Track, String>, String> {
+pub fn track(s: &BeamSetup, v: &Variant, st: Stepping) -> Result<Result<Track, String>, String> {
     let mut g = s.clone();
     g.grid.sample_every = g.grid.score_every;
     let out = BeamProblem::run_with(&g, v, st, &Observe::Grid)?;

@@ -30,14 +30,14 @@ use crate::summary::Series;
 
 /// What a run function needs.
 #[derive(Debug, Clone)]
-pub struct Setup {
+pub struct BeamSetup {
     pub scene: BeamScene,
     pub numerics: Numerics,
     pub grid: Grid,
     pub limits: Limits,
 }
 
-impl Setup {
+impl BeamSetup {
     /// The divergence bound on `|v_tip|` (m).
     pub fn bound(&self) -> f64 {
         self.numerics.divergence_bound * self.scene.beam.l
@@ -52,7 +52,7 @@ pub struct BeamProblem {
     inputs_sha256: String,
     settings_sha256: String,
     primary_metric: String,
-    pub(super) setup: Setup,
+    pub(super) setup: BeamSetup,
     ladders: Ladders,
     quick: Ladders,
     pub(super) reference: Option<(BeamReference, String)>,
@@ -74,7 +74,7 @@ impl BeamProblem {
             inputs_sha256: crate::case::inputs_sha256(case, scene),
             settings_sha256: scene.settings_sha256.clone(),
             primary_metric: case.primary_metric.clone(),
-            setup: Setup {
+            setup: BeamSetup {
                 scene: s.clone(),
                 numerics: *n,
                 grid: Grid {
@@ -93,7 +93,7 @@ impl BeamProblem {
 
     /// One run of a registered variant with this scene's setup (or `setup`).
     pub(super) fn run_with(
-        setup: &Setup,
+        setup: &BeamSetup,
         v: &Variant,
         stepping: Stepping,
         observe: &Observe,

@@ -21,7 +21,7 @@ use std::path::Path;
 
 use super::family::{Track, track};
 use super::observe::BeamObs;
-use super::problem::{BeamProblem, Setup};
+use super::problem::{BeamProblem, BeamSetup};
 use crate::problem::Problem;
 use crate::reference::{self, Stored};
 use crate::run::Stepping;
@@ -126,7 +126,7 @@ impl Stored for BeamReference {
 }
 
 /// `fe_exact` with `elements` under Newmark at `h`, on the score grid.
-pub(super) fn fe_run(setup: &Setup, elements: usize, h: f64) -> Result<Track, String> {
+pub(super) fn fe_run(setup: &BeamSetup, elements: usize, h: f64) -> Result<Track, String> {
     let mut s = setup.clone();
     s.numerics.elements = elements;
     let v = super::family::FAMILY
@@ -237,7 +237,7 @@ pub fn make(p: &BeamProblem, root: &Path) -> Result<String, String> {
 
 /// The self-convergence track of every formulation (`family::self_convergence` names the
 /// tight run and the coarser one of each).
-fn self_tracks(s: &Setup) -> Result<Vec<SelfTrack>, String> {
+fn self_tracks(s: &BeamSetup) -> Result<Vec<SelfTrack>, String> {
     use super::family::SelfPlan;
     let mut out = vec![];
     // Formulations that share a tight run (the AIGC forms) share its track.
