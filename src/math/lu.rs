@@ -121,7 +121,7 @@ pub enum Substitution {
 /// error naming its column:
 ///
 /// ```
-/// use mbdbench::math::lu::{DenseLu, LuError};
+/// use mbdbench::math::lu::{DenseLu, LinearSolve, LuError};
 /// use nalgebra::{DMatrix, DVector};
 ///
 /// let mut lu = DenseLu::new(3);

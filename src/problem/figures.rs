@@ -15,6 +15,7 @@
 //! # Example
 //!
 //! ```
+//! use mbdbench::catalogue;
 //! use mbdbench::problem::{self, figures::Admit};
 //!
 //! let fig = catalogue::FAMILIES[0].figures;

@@ -6,6 +6,7 @@
 //! # Example
 //!
 //! ```
+//! use mbdbench::catalogue;
 //! use mbdbench::problem::{self, Entry};
 //!
 //! let family = catalogue::FAMILIES[0];
