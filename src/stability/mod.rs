@@ -66,22 +66,6 @@ pub struct StudyInput<'a> {
 /// A family's own stability study (`problem::Family::study`): its part of `stability.json`.
 pub type Study = fn(&StudyInput) -> Result<Part, String>;
 
-/// `filter` narrowed to `params` x `integrators` x `body` (each list kept where the user's
-/// filter is empty, intersected otherwise).
-pub fn narrowed(filter: &VariantFilter, params: &[&str], integrators: &[&str]) -> VariantFilter {
-    let meet = |user: &[String], ours: &[&str]| -> Vec<String> {
-        ours.iter()
-            .filter(|x| user.is_empty() || user.iter().any(|u| u == *x))
-            .map(|x| x.to_string())
-            .collect()
-    };
-    VariantFilter {
-        param: meet(&filter.param, params),
-        integrator: meet(&filter.integrator, integrators),
-        formulation: meet(&filter.formulation, &["body"]),
-    }
-}
-
 /// Runs `search` on every job in parallel over `opts.jobs` threads, one job at a time per
 /// thread; each record gets the search's wall time, and progress goes to stderr
 /// (`crate::progress`: a bar on a terminal, else a line every tenth of the jobs, `label`,

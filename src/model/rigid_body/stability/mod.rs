@@ -16,7 +16,8 @@
 //!
 //! Every part is deterministic: its records (all but `wall_s`, `created_utc`, `env`) do not
 //! depend on `--jobs`.
-use crate::stability::{Part, StudyInput, StudyOptions, narrowed, timed_searches};
+use crate::selection::VariantFilter;
+use crate::stability::{Part, StudyInput, StudyOptions, timed_searches};
 
 pub mod long_horizon;
 pub mod search;
@@ -32,6 +33,23 @@ pub const QUICK_INTEGRATORS: &[&str] = &["euler", "rk4", "simo_wong"];
 /// `filter` narrowed to the quick tier's variants.
 pub fn quick_filter(filter: &crate::selection::VariantFilter) -> crate::selection::VariantFilter {
     narrowed(filter, QUICK_PARAMS, QUICK_INTEGRATORS)
+}
+
+/// `filter` narrowed to `params` x `integrators` x `body` (each list kept where the user's
+/// filter is empty, intersected otherwise): the rigid body's parts study the body
+/// formulation.
+pub fn narrowed(filter: &VariantFilter, params: &[&str], integrators: &[&str]) -> VariantFilter {
+    let meet = |user: &[String], ours: &[&str]| -> Vec<String> {
+        ours.iter()
+            .filter(|x| user.is_empty() || user.iter().any(|u| u == *x))
+            .map(|x| x.to_string())
+            .collect()
+    };
+    VariantFilter {
+        param: meet(&filter.param, params),
+        integrator: meet(&filter.integrator, integrators),
+        formulation: meet(&filter.formulation, &["body"]),
+    }
 }
 
 /// One search job: a scene and a variant.

@@ -70,7 +70,7 @@ pub fn study(
     };
     let narrowed;
     let filter = if opts.quick {
-        narrowed = crate::stability::narrowed(
+        narrowed = super::narrowed(
             filter,
             &["euler_xyz", "euler_zyx", "quat_proj", "so3"],
             &["rk4", "dop853"],

@@ -17,7 +17,8 @@
 
 use super::search::StudyScene;
 use super::step_search;
-use crate::stability::{Part, StudyOptions, narrowed};
+use super::narrowed;
+use crate::stability::{Part, StudyOptions};
 use crate::case::Case;
 use crate::metrics::order::loglog_slope;
 use crate::model::rigid_body::case::RigidCase;
