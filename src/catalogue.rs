@@ -96,7 +96,7 @@ pub use crate::model::FAMILIES;
 
 /// The family a case belongs to (its `model` key, checked when the case was loaded).
 pub fn family_of(case: &Case) -> &'static Family {
-    find_family(case.model).unwrap_or(FAMILIES[0])
+    find_family(case.model()).unwrap_or(FAMILIES[0])
 }
 
 /// The family whose axes name the variant `(param, integrator, formulation)` (the report of a

@@ -255,7 +255,6 @@ impl Ctx<'_> {
             file: self.file.to_string(),
             name: raw.case,
             title: raw.title,
-            model: family.model(),
             family,
             primary_metric: raw.primary_metric,
             energy_scale,

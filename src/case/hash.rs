@@ -97,7 +97,7 @@ pub fn num(x: f64) -> Value {
 pub fn inputs_value(case: &Case, scene: &Scene) -> Value {
     let mut m = case.family.inputs(case, scene);
     m.insert("case".into(), Value::from(case.name.as_str()));
-    m.insert("model".into(), Value::from(case.model));
+    m.insert("model".into(), Value::from(case.model()));
     m.insert("t_end".into(), num(scene.t_end));
     m.insert("score_every".into(), num(scene.score_every));
     Value::Object(m)
@@ -116,7 +116,7 @@ pub fn check_family_inputs(case: &Case) -> Result<(), CaseError> {
                 message: format!(
                     "family `{}` puts the reserved key `{k}` in its physics hash (scene `{}`); \
                      the hash adds {} itself: the family must name its keys otherwise",
-                    case.model,
+                    case.model(),
                     scene.name,
                     RESERVED_INPUT_KEYS.join(", ")
                 ),

@@ -375,7 +375,7 @@ const FIXED_BY_LOADER: [(&str, &str); 4] = [
 #[test]
 fn modal_counts_are_physics() {
     let cases = crate::catalogue::embedded().unwrap();
-    let c = cases.iter().find(|c| c.model == "flexible_beam").unwrap();
+    let c = cases.iter().find(|c| c.model() == "flexible_beam").unwrap();
     let (_, text) = embedded_sources()
         .iter()
         .find(|(l, _)| l.ends_with("flexible_beam.toml"))

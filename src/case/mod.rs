@@ -226,9 +226,7 @@ pub struct Case {
     /// `case`: snake_case, equal to the file stem.
     pub name: String,
     pub title: String,
-    /// The family's `model` key (`catalogue::FAMILIES`).
-    pub model: &'static str,
-    /// The family that loaded it.
+    /// The family that loaded it (its `model` key: [`Case::model`]).
     pub family: &'static dyn CaseFamily,
     /// One of the family's metrics.
     pub primary_metric: String,
@@ -335,6 +333,11 @@ impl Case {
             max_rhs_evals: self.max_rhs_evals,
             max_adaptive_rhs_evals: self.max_adaptive_rhs_evals,
         }
+    }
+
+    /// The family's `model` key (`catalogue::FAMILIES`).
+    pub fn model(&self) -> &'static str {
+        self.family.model()
     }
 
     /// The scene named `name`.

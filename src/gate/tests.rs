@@ -30,7 +30,7 @@ fn quick_summary_is_recognised() {
     let cases: Vec<_> = crate::catalogue::embedded()
         .unwrap()
         .into_iter()
-        .filter(|c| c.model == "rigid_body")
+        .filter(|c| c.model() == "rigid_body")
         .collect();
     let plans = crate::model::rigid_body::plan::plans(&cases, &[], &[]).unwrap();
     let p = plans

@@ -58,7 +58,7 @@ pub fn run_study(
 fn only(cases: &[crate::case::Case], families: &[&str]) -> Vec<crate::case::Case> {
     cases
         .iter()
-        .filter(|c| families.contains(&c.model))
+        .filter(|c| families.contains(&c.model()))
         .cloned()
         .collect()
 }

@@ -83,7 +83,7 @@ pub fn check_case(c: &Case) {
             assert!(l.tol.iter().all(|t| *t > 0.0 && *t < 1.0));
         }
         assert_eq!(case::inputs_sha256(c, s).len(), 64);
-        if c.model == "rigid_body"
+        if c.model() == "rigid_body"
             && let Err(e) = rigid_plan::scene_plan(c, s)
         {
             check_error(&c.file, &e);

@@ -147,7 +147,7 @@ fn parts<'a>(case: &'a Case, scene: &'a Scene) -> Res<(&'a RigidCase, &'a RigidS
         _ => Err(CaseError {
             file: case.file.clone(),
             key: "model".into(),
-            message: format!("`{}` is not a rigid-body case", case.model),
+            message: format!("`{}` is not a rigid-body case", case.model()),
         }),
     }
 }
