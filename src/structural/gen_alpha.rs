@@ -234,20 +234,25 @@ mod tests {
     use super::super::test_support::*;
     use super::*;
 
-    /// HHT is the member of the family with `alpha_m = 0`, `alpha_f = -alpha`: the
-    /// coefficients `Hht` and the fiber column's dynamic schemes use, with `rho_inf =
-    /// (1 + alpha)/(1 - alpha)`; a bad `alpha` is an error naming it.
+    /// HHT is the member of the family with `alpha_m = 0`, `alpha_f = -alpha`: its `beta`
+    /// and `gamma`, written in `alpha`, satisfy the family's second-order and stability
+    /// conditions (`gamma = 1/2 - alpha_m + alpha_f`, `beta = (1 - alpha_m + alpha_f)^2 / 4`,
+    /// Chung & Hulbert eq. 16, 23) to round-off, and `Hht` steps with them; a bad `alpha` is
+    /// an error naming it.
     #[test]
     fn hht_is_the_family_member_with_alpha_m_zero() {
         for alpha in [0.0, -0.05, -0.3, -1.0 / 3.0] {
             let c = Coefficients::hht(alpha, "hht").unwrap();
-            let h = crate::structural::hht::Hht::new(alpha, NewtonOptions::default()).unwrap();
-            assert_eq!(
-                (c.alpha_f, c.beta, c.gamma),
-                (-h.parameters().0, h.parameters().1, h.parameters().2)
+            assert_eq!((c.alpha_m, c.alpha_f), (0.0, -alpha));
+            let (am, af) = (c.alpha_m, c.alpha_f);
+            assert!((c.gamma - (0.5 - am + af)).abs() <= 1e-16, "{c:?}");
+            assert!(
+                (c.beta - (1.0 - am + af).powi(2) / 4.0).abs() <= 1e-16,
+                "{c:?}"
             );
-            assert_eq!(c.alpha_m, 0.0);
             assert!((c.rho_inf - (1.0 + alpha) / (1.0 - alpha)).abs() < 1e-15);
+            let h = crate::structural::hht::Hht::new(alpha, NewtonOptions::default()).unwrap();
+            assert_eq!(h.parameters(), (alpha, c.beta, c.gamma));
         }
         let e = Coefficients::hht(0.1, "hht").unwrap_err();
         assert!(e.contains("alpha = 0.1"), "{e}");
