@@ -24,7 +24,7 @@
 //! ```
 //! let cases = mbdbench::catalogue::embedded().unwrap();
 //! let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
-//! assert_eq!(c.model, "rigid_body");
+//! assert_eq!(c.model(), "rigid_body");
 //! let s = c.scene("two_angles").unwrap();
 //! assert!(s.t_end > 0.0 && s.n_score >= 1);
 //! // Bad input is an error naming the file and the key.
