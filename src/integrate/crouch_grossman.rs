@@ -113,18 +113,9 @@ fn compose<S: System>(sys: &S, x: &S::State, h: f64, w: &[f64], k: &[S::Tangent]
 
 impl<S: System, T: FixedTableau> FixedStep<S> for CrouchGrossman<S, T> {
     fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: T::TAB.name,
-            order: T::TAB.order,
-            stages: T::TAB.stages() as u32,
-            implicit: false,
-            symplectic: false,
-            lie_group: S::LIE,
-            energy_conserving: false,
-            adaptive: false,
-            kind: MethodKind::Geometric,
-            twin_of: None,
-        }
+        MethodInfo::new(T::TAB.name, MethodKind::Geometric, T::TAB.order)
+            .with_stages(T::TAB.stages() as u32)
+            .with_lie_group(S::LIE)
     }
 
     /// One step; counts its `stages` RHS evaluations (the caller counts the step).

@@ -129,18 +129,9 @@ impl<S: System> ExplicitRk<S, Rk4Tableau> {
 
 impl<S: System, T: FixedTableau> FixedStep<S> for ExplicitRk<S, T> {
     fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: T::TAB.name,
-            order: T::TAB.order,
-            stages: T::TAB.stages() as u32,
-            implicit: false,
-            symplectic: false,
-            lie_group: S::LIE,
-            energy_conserving: false,
-            adaptive: false,
-            kind: MethodKind::Explicit,
-            twin_of: None,
-        }
+        MethodInfo::new(T::TAB.name, MethodKind::Explicit, T::TAB.order)
+            .with_stages(T::TAB.stages() as u32)
+            .with_lie_group(S::LIE)
     }
 
     /// One step; counts its `stages` RHS evaluations (the caller counts the step).

@@ -3,8 +3,10 @@
 //! methods). One file per method family lives beside this one: the methods generic over a kind
 //! of system. `integrate` imports no model family (docs/architecture.md): a method written for
 //! one family's equations lives in that family's folder (the rigid body's `splitting`, `lgvi`,
-//! `lie_gen_alpha`, `simo_wong` and compensated variants in `model/rigid_body/methods/`), and
-//! uses the shared pieces here (`lu6`, `newton_stop`, `implicit_rk`).
+//! `simo_wong` and compensated variants in `model/rigid_body/methods/`), and uses the shared
+//! pieces here (`lu6`, `newton_stop`, `own_state`, `implicit_rk`). A method for a kind of
+//! system is written once over that kind's trait: `lie_gen_alpha` over `LieSecondOrder` (a
+//! second-order system on a Lie group), which a family implements for its systems.
 //!
 //! A `System` separates the state (what is stored: a quaternion has 4 numbers) from its
 //! increment (`Tangent`: 3 numbers on SO(3)). `retract(x, dx)` is `x + dx` on additive charts
@@ -24,9 +26,13 @@ use crate::math::vector::Vector;
 pub mod adaptive_rk;
 pub mod crouch_grossman;
 pub mod explicit_rk;
+pub mod gen_alpha_coefficients;
 pub mod implicit_rk;
+pub mod lie_gen_alpha;
+pub mod lie_second_order;
 pub mod lu6;
 pub(crate) mod newton_stop;
+pub mod own_state;
 #[cfg(test)]
 pub(crate) mod rigid_test_support;
 pub mod tableau;
@@ -368,6 +374,80 @@ pub struct MethodInfo {
     /// summation), that method's name: the twins matter over long horizons only, and the
     /// short-horizon plots leave them out.
     pub twin_of: Option<&'static str>,
+}
+
+impl MethodInfo {
+    /// A method of `kind` and `order` with one stage and every property off (explicit, fixed
+    /// step, neither symplectic nor Lie-group nor energy-conserving, no twin); the `with_`
+    /// methods set the rest, so a method states only what it is.
+    ///
+    /// # Example
+    ///
+    /// ```
+    /// use mbdbench::integrate::{MethodInfo, MethodKind};
+    ///
+    /// let lgvi = MethodInfo::new("lgvi", MethodKind::Geometric, 2)
+    ///     .with_implicit(true)
+    ///     .with_symplectic(true)
+    ///     .with_lie_group(true);
+    /// assert!(lgvi.implicit && lgvi.symplectic && !lgvi.energy_conserving && lgvi.stages == 1);
+    /// ```
+    pub const fn new(name: &'static str, kind: MethodKind, order: u32) -> Self {
+        MethodInfo {
+            name,
+            order,
+            stages: 1,
+            implicit: false,
+            symplectic: false,
+            lie_group: false,
+            energy_conserving: false,
+            adaptive: false,
+            kind,
+            twin_of: None,
+        }
+    }
+
+    /// With `stages` stages.
+    pub const fn with_stages(mut self, stages: u32) -> Self {
+        self.stages = stages;
+        self
+    }
+
+    /// Implicit or not.
+    pub const fn with_implicit(mut self, yes: bool) -> Self {
+        self.implicit = yes;
+        self
+    }
+
+    /// Symplectic or not.
+    pub const fn with_symplectic(mut self, yes: bool) -> Self {
+        self.symplectic = yes;
+        self
+    }
+
+    /// Running on a Lie group (its state moved by a retraction) or not.
+    pub const fn with_lie_group(mut self, yes: bool) -> Self {
+        self.lie_group = yes;
+        self
+    }
+
+    /// Conserving the energy exactly or not.
+    pub const fn with_energy_conserving(mut self, yes: bool) -> Self {
+        self.energy_conserving = yes;
+        self
+    }
+
+    /// Adaptive (choosing its own steps) or not.
+    pub const fn with_adaptive(mut self, yes: bool) -> Self {
+        self.adaptive = yes;
+        self
+    }
+
+    /// The twin of method `name` (the same method with another summation).
+    pub const fn with_twin_of(mut self, name: &'static str) -> Self {
+        self.twin_of = Some(name);
+        self
+    }
 }
 
 /// The family a method belongs to, independent of the chart it runs on (RKMK4 on a Lie-group

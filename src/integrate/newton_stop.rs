@@ -1,5 +1,5 @@
 //! The stopping rule shared by the Newton iterations of the geometric implicit methods
-//! (`lgvi`, `simo_wong`, `lie_gen_alpha` of `model/rigid_body/methods/`).
+//! (`lie_gen_alpha` here; `lgvi`, `simo_wong` of `model/rigid_body/methods/`).
 //!
 //! An iteration is judged on the relative size of its last update, `rel = |delta| / |z|`
 //! (each method says which unknown `z` and which norm). It has converged when

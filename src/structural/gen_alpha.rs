@@ -47,6 +47,7 @@
 use super::SecondOrder;
 use super::newton::{self, NewtonOptions, Point};
 use super::state::State;
+pub use crate::integrate::gen_alpha_coefficients::Coefficients;
 use crate::integrate::{Failure, MethodInfo, Stats};
 
 /// The generalized-alpha method (Arnold & Brüls form).
@@ -95,58 +96,10 @@ pub struct GenAlpha {
     newton: NewtonOptions,
 }
 
-/// The coefficients of the generalized-alpha methods (this one and the index-3 form), all
-/// set by the spectral radius at infinity `rho_inf`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Coefficients {
-    pub rho_inf: f64,
-    pub alpha_m: f64,
-    pub alpha_f: f64,
-    pub beta: f64,
-    pub gamma: f64,
-}
-
 impl Default for GenAlpha {
     /// `rho_inf = 0.9`, default Newton options.
     fn default() -> Self {
         GenAlpha::new(0.9, NewtonOptions::default()).expect("valid defaults")
-    }
-}
-
-/// `(alpha_m, alpha_f, beta, gamma)` of (G0), or an error naming `rho_inf` (shared with the
-/// index-3 form).
-impl Coefficients {
-    /// The coefficients for `rho_inf` in `[0, 1]` (Chung & Hulbert); an error names `method`
-    /// and the bad value.
-    pub fn new(rho_inf: f64, method: &str) -> Result<Coefficients, String> {
-        if !(rho_inf.is_finite() && (0.0..=1.0).contains(&rho_inf)) {
-            return Err(format!("{method} rho_inf = {rho_inf} must be in [0, 1]"));
-        }
-        let alpha_m = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
-        let alpha_f = rho_inf / (rho_inf + 1.0);
-        Ok(Coefficients {
-            rho_inf,
-            alpha_m,
-            alpha_f,
-            gamma: 0.5 - alpha_m + alpha_f,
-            beta: (1.0 - alpha_m + alpha_f).powi(2) / 4.0,
-        })
-    }
-
-    /// HHT-alpha as a member of the family (Hilber, Hughes & Taylor 1977): `alpha_m = 0`,
-    /// `alpha_f = -alpha`, `beta = (1 - alpha)^2 / 4`, `gamma = 1/2 - alpha`, for `alpha` in
-    /// `[-1/3, 0]` (`rho_inf = (1 + alpha) / (1 - alpha)`); an error names `method`.
-    pub fn hht(alpha: f64, method: &str) -> Result<Coefficients, String> {
-        if !(alpha.is_finite() && (-1.0 / 3.0..=0.0).contains(&alpha)) {
-            return Err(format!("{method} alpha = {alpha} must be in [-1/3, 0]"));
-        }
-        Ok(Coefficients {
-            rho_inf: (1.0 + alpha) / (1.0 - alpha),
-            alpha_m: 0.0,
-            alpha_f: -alpha,
-            beta: (1.0 - alpha).powi(2) / 4.0,
-            gamma: 0.5 - alpha,
-        })
     }
 }
 

@@ -224,18 +224,10 @@ impl<S: ErrorScale> AdaptiveRk<S> {
 
 impl<S: ErrorScale> Adaptive<S> for AdaptiveRk<S> {
     fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: self.tab.rk.name,
-            order: self.tab.rk.order,
-            stages: self.tab.rk.stages() as u32,
-            implicit: false,
-            symplectic: false,
-            lie_group: S::LIE,
-            energy_conserving: false,
-            adaptive: true,
-            kind: MethodKind::Explicit,
-            twin_of: None,
-        }
+        MethodInfo::new(self.tab.rk.name, MethodKind::Explicit, self.tab.rk.order)
+            .with_stages(self.tab.rk.stages() as u32)
+            .with_lie_group(S::LIE)
+            .with_adaptive(true)
     }
 
     fn advance(

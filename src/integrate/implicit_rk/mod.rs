@@ -168,18 +168,11 @@ impl<S: System> FixedStep<S> for ImplicitRk<S> {
             GaussScheme::ImplicitMidpoint => ("implicit_midpoint", 2),
             GaussScheme::Gauss6 => ("gauss6", 6),
         };
-        MethodInfo {
-            name,
-            order,
-            stages: self.tab.s as u32,
-            implicit: true,
-            symplectic: !S::LIE,
-            lie_group: S::LIE,
-            energy_conserving: false,
-            adaptive: false,
-            kind: MethodKind::Implicit,
-            twin_of: None,
-        }
+        MethodInfo::new(name, MethodKind::Implicit, order)
+            .with_stages(self.tab.s as u32)
+            .with_implicit(true)
+            .with_symplectic(!S::LIE)
+            .with_lie_group(S::LIE)
     }
 
     fn step(

@@ -226,7 +226,7 @@ pub struct RigidSystem<C: PoseChart, F: Formulation> {
 /// State: the chart's pose coordinates and the velocity 6-vector `(v, omega)` (body
 /// formulation: world velocity of the reference point and body angular velocity; spatial:
 /// the spatial twist `(v_s, w)`).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RigidState<P: Copy> {
     pub pose: P,
     pub vel: Vector6<f64>,

@@ -6,16 +6,17 @@
 //! Rules: the generic integrators (`euler`, `rk4`, `dopri5`, `dop853`, `implicit_midpoint`,
 //! `gauss6`) run on every chart in both formulations (classical RK on additive charts, RKMK on
 //! Lie-group charts); the Crouch-Grossman methods (`lie_euler`, `cg3`) need a Lie-group chart;
-//! the geometric rigid-body methods (`splitting`, `lgvi`, `simo_wong`, `lie_gen_alpha`) are
-//! written on SO(3) x R^3 in the body formulation. Per scene, the SE(3) charts (`se3_hq`,
+//! the geometric rigid-body methods (`splitting`, `lgvi`, `simo_wong`) are written on
+//! SO(3) x R^3 in the body formulation, and `lie_gen_alpha` (generic over
+//! `integrate::LieSecondOrder`) runs where the body implements that trait: `so3`, body. Per scene, the SE(3) charts (`se3_hq`,
 //! `dual_quat`) are `n/a` when the body does not translate (a pivot, or no mass).
 use crate::integrate::adaptive_rk::AdaptiveRk;
 use super::methods::compensated::GaussKahan;
 use crate::integrate::crouch_grossman::CrouchGrossman;
 use crate::integrate::explicit_rk::ExplicitRk;
 use crate::integrate::implicit_rk::ImplicitRk;
+use crate::integrate::lie_gen_alpha::LieGenAlpha;
 use super::methods::lgvi::Lgvi;
-use super::methods::lie_gen_alpha::LieGenAlpha;
 use super::methods::simo_wong::SimoWong;
 use super::methods::simo_wong_kahan::SimoWongKahan;
 use super::methods::splitting::Splitting;
@@ -235,7 +236,7 @@ fn build() -> Vec<Variant> {
     v.push(fixed!(So3, Body, "splitting", Splitting::new()));
     v.push(fixed!(So3, Body, "lgvi", Lgvi::new()));
     v.push(fixed!(So3, Body, "simo_wong", SimoWong::new()));
-    v.push(fixed!(So3, Body, "lie_gen_alpha", LieGenAlpha::default()));
+    v.push(fixed!(So3, Body, "lie_gen_alpha", LieGenAlpha::<6, _>::default()));
     // Compensated summation, for the long-horizon study (stability::long_horizon).
     for_kahan(&mut v);
     for x in &v {

@@ -24,18 +24,7 @@ impl StormerVerlet {
 
 impl<C: Coordinates> FixedStep<ChainSystem<C>> for StormerVerlet {
     fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: "stormer_verlet",
-            order: 2,
-            stages: 1,
-            implicit: false,
-            symplectic: true,
-            lie_group: false,
-            energy_conserving: false,
-            adaptive: false,
-            kind: MethodKind::Geometric,
-            twin_of: None,
-        }
+        MethodInfo::new("stormer_verlet", MethodKind::Geometric, 2).with_symplectic(true)
     }
 
     fn step(

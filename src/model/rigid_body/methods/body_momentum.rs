@@ -8,7 +8,7 @@
 //! refinement `J omega = Pi` holds to round-off.
 use nalgebra::Vector3;
 
-use super::own_state::So3State;
+use super::So3State;
 use crate::model::rigid_body::RigidBody;
 
 /// `J^{-1} Pi`, refined once so that `J omega = Pi` to round-off.

@@ -38,7 +38,8 @@ use nalgebra::{Matrix3, UnitQuaternion, Vector3, Vector6};
 
 use super::body_momentum::{is_finite_state, omega_from_pi};
 use crate::integrate::newton_stop::{NewtonStop, relative, update_norm};
-use super::own_state::{OwnState, So3State};
+use super::So3State;
+use crate::integrate::own_state::{OwnState, normalized};
 use crate::integrate::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
 use crate::math::so3;
 use crate::model::rigid_body::RigidSystem;
@@ -47,7 +48,7 @@ use crate::rotation::{Body, Pose, So3};
 /// The Lie group variational integrator.
 #[derive(Debug, Clone, Default)]
 pub struct Lgvi {
-    own: OwnState,
+    own: OwnState<So3State>,
     /// World force and torque at the end of the last step.
     end_wrench: (Vector3<f64>, Vector3<f64>),
     /// Body angular momentum at the end of the last step (reused instead of `J omega`, whose
@@ -92,18 +93,10 @@ pub(crate) fn solve_cayley(
 
 impl FixedStep<RigidSystem<So3, Body>> for Lgvi {
     fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: "lgvi",
-            order: 2,
-            stages: 1,
-            implicit: true,
-            symplectic: true,
-            lie_group: true,
-            energy_conserving: false,
-            adaptive: false,
-            kind: MethodKind::Geometric,
-            twin_of: None,
-        }
+        MethodInfo::new("lgvi", MethodKind::Geometric, 2)
+            .with_implicit(true)
+            .with_symplectic(true)
+            .with_lie_group(true)
     }
 
     fn step(
@@ -156,7 +149,7 @@ impl FixedStep<RigidSystem<So3, Body>> for Lgvi {
             vel: Vector6::zeros(),
         };
         // Force at the new pose (the caller-normalized rotation: it is reused next step).
-        let r1 = OwnState::normalized(&out).to_rotation_matrix().into_inner();
+        let r1 = normalized(sys, &out).pose.rot.to_rotation_matrix().into_inner();
         stats.rhs_evals += 1;
         let (f1, tau1) = b.wrench(&r1, &x);
         // (3).
@@ -187,7 +180,7 @@ impl FixedStep<RigidSystem<So3, Body>> for Lgvi {
             ));
         }
         *s = out;
-        self.own.record(s);
+        self.own.record(sys, s);
         self.end_wrench = (f1, tau1);
         self.end_pi = pi1;
         Ok(())

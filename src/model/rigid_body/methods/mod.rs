@@ -4,25 +4,30 @@
 //! generic methods of `integrate/`.
 //! - `splitting`: the free rigid body split into rotations about its principal axes;
 //! - `lgvi`: the Lie-group variational integrator on the body's discrete Lagrangian;
-//! - `lie_gen_alpha`: generalized-alpha on SO(3) x R^3 for the body's Newton-Euler equations;
 //! - `simo_wong`, `simo_wong_kahan`: Simo and Wong's energy-momentum scheme, and its form whose
 //!   round-off is `O(eps h)` a step;
 //! - `compensated`: compensated (Kahan) summation of the rigid state's update
 //!   (`implicit_midpoint_kahan`, `gauss6_kahan`);
-//! - `body_momentum`, `own_state`: the end-of-step pieces they share (the body rate from the
-//!   body momentum; recognising the state a step produced).
+//! - `body_momentum`: the end-of-step piece they share (the body rate from the body momentum);
+//! - `lie_second_order`: the body as an `integrate::LieSecondOrder` system (its retraction on
+//!   SO(3) x R^3 and its gyroscopic tangent Jacobian), on which the generic Lie-group
+//!   generalized-alpha method `integrate::lie_gen_alpha` runs.
 //!
 //! They live here because they need `RigidSystem` and `RigidBody`; the generic method kinds
-//! they instantiate (`integrate::FixedStep`, the implicit RK code of `integrate::implicit_rk`)
-//! stay in `integrate/`, which imports no family (docs/architecture.md).
+//! they instantiate (`integrate::FixedStep`, the implicit RK code of `integrate::implicit_rk`,
+//! `integrate::lie_gen_alpha`) and what they share with them (`integrate::own_state`,
+//! `integrate::newton_stop`) stay in `integrate/`, which imports no family
+//! (docs/architecture.md).
 mod body_momentum;
 pub mod compensated;
 pub mod lgvi;
-pub mod lie_gen_alpha;
-mod own_state;
+mod lie_second_order;
 pub mod simo_wong;
 pub mod simo_wong_kahan;
 pub mod splitting;
+
+/// A rigid-body state with the `so3` chart.
+pub(crate) type So3State = super::RigidState<crate::rotation::Pose<nalgebra::UnitQuaternion<f64>>>;
 
 /// The rigid body: the pose (attitude and position, both without a natural origin) is scaled
 /// by the step's own increment, the velocities by their values.

@@ -47,7 +47,7 @@ use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 
 use crate::integrate::lu6::Lu6;
 use crate::integrate::newton_stop::{NewtonStop, relative, update_norm};
-use super::own_state::So3State;
+use super::So3State;
 use crate::integrate::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
 use crate::math::so3;
 use crate::model::rigid_body::{RigidBody, RigidSystem};
@@ -175,18 +175,10 @@ pub(super) fn forward_jacobian(
 
 impl FixedStep<RigidSystem<So3, Body>> for SimoWong {
     fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: "simo_wong",
-            order: 2,
-            stages: 1,
-            implicit: true,
-            symplectic: false,
-            lie_group: true,
-            energy_conserving: true,
-            adaptive: false,
-            kind: MethodKind::Geometric,
-            twin_of: None,
-        }
+        MethodInfo::new("simo_wong", MethodKind::Geometric, 2)
+            .with_implicit(true)
+            .with_lie_group(true)
+            .with_energy_conserving(true)
     }
 
     fn step(

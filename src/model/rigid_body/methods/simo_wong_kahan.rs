@@ -24,7 +24,7 @@ use nalgebra::{Matrix6, Vector3, Vector6};
 
 use super::compensated::{CompensatedRetract, add_compensated, so3_product_compensated};
 use crate::integrate::newton_stop::{NewtonStop, relative, update_norm};
-use super::own_state::So3State;
+use super::So3State;
 use super::simo_wong::{StepData, forward_jacobian};
 use crate::integrate::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
 use crate::math::so3;
@@ -89,18 +89,11 @@ fn jacobian(d: &StepData, z: &Vector6<f64>, g0: &Vector6<f64>, stats: &mut Stats
 
 impl FixedStep<RigidSystem<So3, Body>> for SimoWongKahan {
     fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: "simo_wong_kahan",
-            order: 2,
-            stages: 1,
-            implicit: true,
-            symplectic: false,
-            lie_group: true,
-            energy_conserving: true,
-            adaptive: false,
-            kind: MethodKind::Geometric,
-            twin_of: Some("simo_wong"),
-        }
+        MethodInfo::new("simo_wong_kahan", MethodKind::Geometric, 2)
+            .with_implicit(true)
+            .with_lie_group(true)
+            .with_energy_conserving(true)
+            .with_twin_of("simo_wong")
     }
 
     fn step(

@@ -33,7 +33,8 @@
 use nalgebra::{Matrix3, Quaternion, SymmetricEigen, UnitQuaternion, Vector3, Vector6};
 
 use super::body_momentum::{is_finite_state, omega_from_pi};
-use super::own_state::{OwnState, So3State};
+use super::So3State;
+use crate::integrate::own_state::{OwnState, normalized};
 use crate::integrate::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
 use crate::model::rigid_body::{RigidBody, RigidSystem};
 use crate::rotation::{Body, So3};
@@ -82,7 +83,7 @@ impl PrincipalAxes {
 #[derive(Debug, Clone, Default)]
 pub struct Splitting {
     axes: Option<PrincipalAxes>,
-    own: OwnState,
+    own: OwnState<So3State>,
     /// World force and torque at the end of the last step.
     end_wrench: (Vector3<f64>, Vector3<f64>),
 }
@@ -142,18 +143,7 @@ fn free_rotor(q: &mut Quaternion<f64>, pi: &mut Vector3<f64>, ax: &PrincipalAxes
 
 impl FixedStep<RigidSystem<So3, Body>> for Splitting {
     fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: "splitting",
-            order: 2,
-            stages: 1,
-            implicit: false,
-            symplectic: true,
-            lie_group: true,
-            energy_conserving: false,
-            adaptive: false,
-            kind: MethodKind::Geometric,
-            twin_of: None,
-        }
+        MethodInfo::new("splitting", MethodKind::Geometric, 2).with_symplectic(true).with_lie_group(true)
     }
 
     fn step(
@@ -195,7 +185,7 @@ impl FixedStep<RigidSystem<So3, Body>> for Splitting {
             pose: crate::rotation::Pose { rot: q1, x },
             vel: Vector6::zeros(),
         };
-        let r1 = OwnState::normalized(&out).to_rotation_matrix().into_inner();
+        let r1 = normalized(sys, &out).pose.rot.to_rotation_matrix().into_inner();
         stats.rhs_evals += 1;
         let (f1, tau1) = b.wrench(&r1, &x);
         big_pi += r1.transpose() * tau1 * (0.5 * h);
@@ -214,7 +204,7 @@ impl FixedStep<RigidSystem<So3, Body>> for Splitting {
             ));
         }
         *s = out;
-        self.own.record(s);
+        self.own.record(sys, s);
         self.end_wrench = (f1, tau1);
         Ok(())
     }
