@@ -2,11 +2,14 @@
 //! run reports, and the two method traits (fixed-step one-step methods, adaptive whole-span
 //! methods). One file per method family lives beside this one: the methods generic over a kind
 //! of system. `integrate` imports no model family (docs/architecture.md): a method written for
-//! one family's equations lives in that family's folder (the rigid body's `splitting`, `lgvi`,
-//! `simo_wong` and compensated variants in `model/rigid_body/methods/`), and uses the shared
-//! pieces here (`lu6`, `newton_stop`, `own_state`, `implicit_rk`). A method for a kind of
-//! system is written once over that kind's trait: `lie_gen_alpha` over `LieSecondOrder` (a
-//! second-order system on a Lie group), which a family implements for its systems.
+//! one family's equations lives in that family's folder (the rigid body's `simo_wong` and
+//! compensated variants in `model/rigid_body/methods/`), and uses the shared pieces here
+//! (`lu6`, `newton_stop`, `own_state`, `implicit_rk`). A method for a kind of system is written
+//! once over that kind's trait, which a family implements for its systems: `lie_gen_alpha`
+//! over `LieSecondOrder` (a second-order system on a Lie group); `kick_drift` over
+//! `SplitMechanics` (a mechanical system split into kicks and a free flow on its group), with
+//! the free flow the family supplies (the rigid body's principal-axis rotor: `splitting`; its
+//! discrete Lagrangian's flow: `lgvi`).
 //!
 //! A `System` separates the state (what is stored: a quaternion has 4 numbers) from its
 //! increment (`Tangent`: 3 numbers on SO(3)). `retract(x, dx)` is `x + dx` on additive charts
@@ -28,6 +31,7 @@ pub mod crouch_grossman;
 pub mod explicit_rk;
 pub mod gen_alpha_coefficients;
 pub mod implicit_rk;
+pub mod kick_drift;
 pub mod lie_gen_alpha;
 pub mod lie_second_order;
 pub mod lu6;

@@ -1,6 +1,6 @@
-//! Shared end-of-step pieces of the geometric rigid-body methods (`splitting`, `lgvi`): the
-//! body angular velocity recovered from the body angular momentum to round-off, and the
-//! finite-state test that turns an overflow into a typed failure.
+//! The end-of-step piece of the rigid body's momentum methods (`splitting`, `lgvi`, through
+//! `split_mechanics`): the body angular velocity recovered from the body angular momentum to
+//! round-off.
 //!
 //! `omega = J^{-1} Pi` with one step of iterative refinement: the computed inverse alone has a
 //! fixed rounding error that the next step's `J omega` turns into a drift of `|Pi|` of about
@@ -8,7 +8,6 @@
 //! refinement `J omega = Pi` holds to round-off.
 use nalgebra::Vector3;
 
-use super::So3State;
 use crate::model::rigid_body::RigidBody;
 
 /// `J^{-1} Pi`, refined once so that `J omega = Pi` to round-off.
@@ -17,14 +16,6 @@ pub(crate) fn omega_from_pi(b: &RigidBody, pi: &Vector3<f64>) -> Vector3<f64> {
     let mut omega = b.inertia_inv * pi;
     omega += b.inertia_inv * (pi - b.inertia * omega);
     omega
-}
-
-/// Whether every number of the state is finite.
-#[inline(always)]
-pub(crate) fn is_finite_state(s: &So3State) -> bool {
-    s.vel.iter().all(|c| c.is_finite())
-        && s.pose.rot.coords.iter().all(|c| c.is_finite())
-        && s.pose.x.iter().all(|c| c.is_finite())
 }
 
 #[cfg(test)]

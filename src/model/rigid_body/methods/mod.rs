@@ -2,8 +2,12 @@
 //! rigid body's momentum, its principal axes, its energy) rather than for any system of a kind,
 //! and what they share. Each is registered in the family's table (`registry.rs`) like the
 //! generic methods of `integrate/`.
-//! - `splitting`: the free rigid body split into rotations about its principal axes;
-//! - `lgvi`: the Lie-group variational integrator on the body's discrete Lagrangian;
+//! - `splitting`: the free flow of the body's kinetic energy as rotations about its principal
+//!   axes (`PrincipalRotor`), run by the generic kick-drift-kick of `integrate::kick_drift`;
+//! - `lgvi`: the discrete free flow of the body's discrete Lagrangian (`MoserVeselov`), run by
+//!   the same kick-drift-kick: the Lie-group variational integrator;
+//! - `split_mechanics`: the body in the variables of that kick-drift-kick
+//!   (`integrate::kick_drift::SplitMechanics`: its force, momenta and kick);
 //! - `simo_wong`, `simo_wong_kahan`: Simo and Wong's energy-momentum scheme, and its form whose
 //!   round-off is `O(eps h)` a step;
 //! - `compensated`: compensated (Kahan) summation of the rigid state's update
@@ -15,13 +19,14 @@
 //!
 //! They live here because they need `RigidSystem` and `RigidBody`; the generic method kinds
 //! they instantiate (`integrate::FixedStep`, the implicit RK code of `integrate::implicit_rk`,
-//! `integrate::lie_gen_alpha`) and what they share with them (`integrate::own_state`,
+//! `integrate::lie_gen_alpha`, `integrate::kick_drift`) and what they share with them (`integrate::own_state`,
 //! `integrate::newton_stop`) stay in `integrate/`, which imports no family
 //! (docs/architecture.md).
 mod body_momentum;
 pub mod compensated;
 pub mod lgvi;
 mod lie_second_order;
+pub mod split_mechanics;
 pub mod simo_wong;
 pub mod simo_wong_kahan;
 pub mod splitting;

@@ -30,12 +30,15 @@
 //! returned or caller-normalized, see `own_state`); `stats.rhs_evals` counts force (wrench)
 //! evaluations. It cannot fail except by non-finite numbers (`non_finite`); a step
 //! `h |omega|` near `pi` or above resolves nothing but stays on the group.
-use nalgebra::{Matrix3, Quaternion, SymmetricEigen, UnitQuaternion, Vector3, Vector6};
+//!
+//! The kicks, the reuse of the end force and the failure handling are the generic
+//! kick-drift-kick of `integrate::kick_drift` over the body's `split_mechanics`; this file
+//! is the free flow it is run with (`PrincipalRotor`) and the type `Splitting` of that method.
+use nalgebra::{Matrix3, Quaternion, SymmetricEigen, Vector3};
 
-use super::body_momentum::{is_finite_state, omega_from_pi};
-use super::So3State;
-use crate::integrate::own_state::{OwnState, normalized};
-use crate::integrate::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats};
+use super::split_mechanics::RigidPhase;
+use crate::integrate::kick_drift::{FreeFlow, KickDriftKick};
+use crate::integrate::{Failure, FailureKind, MethodInfo, MethodKind, Stats};
 use crate::model::rigid_body::{RigidBody, RigidSystem};
 use crate::rotation::{Body, So3};
 
@@ -79,28 +82,31 @@ impl PrincipalAxes {
     }
 }
 
-/// The kick-drift-kick splitting with the principal-axis free-rotor composition.
-#[derive(Debug, Clone, Default)]
-pub struct Splitting {
+/// The free flow of `splitting`: the principal-axis composition of exact free-rotor flows
+/// (step 2), with the translation drifted by the half-kicked velocity.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PrincipalRotor {
     axes: Option<PrincipalAxes>,
-    own: OwnState<So3State>,
-    /// World force and torque at the end of the last step.
-    end_wrench: (Vector3<f64>, Vector3<f64>),
 }
+
+/// The kick-drift-kick splitting (`integrate::kick_drift`) with the principal-axis free-rotor
+/// composition.
+pub type Splitting = KickDriftKick<RigidSystem<So3, Body>, PrincipalRotor>;
 
 impl Splitting {
     pub fn new() -> Self {
-        Self::default()
+        KickDriftKick::with_flow(PrincipalRotor::default())
     }
 
     /// A splitting with the principal axes of `body` computed now (otherwise at the first step).
     pub fn for_body(body: &RigidBody) -> Self {
-        Splitting {
+        KickDriftKick::with_flow(PrincipalRotor {
             axes: PrincipalAxes::of(&body.inertia),
-            ..Self::default()
-        }
+        })
     }
+}
 
+impl PrincipalRotor {
     fn axes(&mut self, body: &RigidBody, t: f64) -> Result<PrincipalAxes, Failure> {
         match self.axes {
             Some(a) if a.inertia == body.inertia => Ok(a),
@@ -141,71 +147,33 @@ fn free_rotor(q: &mut Quaternion<f64>, pi: &mut Vector3<f64>, ax: &PrincipalAxes
     }
 }
 
-impl FixedStep<RigidSystem<So3, Body>> for Splitting {
+impl FreeFlow<RigidSystem<So3, Body>> for PrincipalRotor {
+    /// The momentum is recomputed from the body rate each step (`J omega`).
+    const CARRIES_MOMENTA: bool = false;
+
     fn info(&self) -> MethodInfo {
-        MethodInfo::new("splitting", MethodKind::Geometric, 2).with_symplectic(true).with_lie_group(true)
+        MethodInfo::new("splitting", MethodKind::Geometric, 2)
+            .with_symplectic(true)
+            .with_lie_group(true)
     }
 
-    fn step(
+    fn prepare(&mut self, sys: &RigidSystem<So3, Body>, t: f64) -> Result<(), Failure> {
+        self.axes(&sys.body, t).map(|_| ())
+    }
+
+    fn drift(
         &mut self,
         sys: &RigidSystem<So3, Body>,
+        p: &mut RigidPhase,
         t: f64,
         h: f64,
-        s: &mut So3State,
-        stats: &mut Stats,
+        _stats: &mut Stats,
     ) -> Result<(), Failure> {
-        let b = &sys.body;
-        let ax = self.axes(b, t)?;
-        let translates = b.translates();
-        let r0 = s.pose.rot.to_rotation_matrix().into_inner();
-        let (f0, tau0) = if self.own.matches(s) {
-            self.end_wrench
-        } else {
-            stats.rhs_evals += 1;
-            b.wrench(&r0, &s.pose.x)
-        };
-        let mut v = s.vel.fixed_rows::<3>(0).into_owned();
-        let omega = s.vel.fixed_rows::<3>(3).into_owned();
-        let mut x = s.pose.x;
-
-        // Kick.
-        let mut big_pi = b.inertia * omega + r0.transpose() * tau0 * (0.5 * h);
-        if translates {
-            v += f0 * (0.5 * h / b.mass);
-            // Drift (translation).
-            x += v * h;
+        let ax = self.axes(&sys.body, t)?;
+        if sys.body.translates() {
+            p.x += p.v * h;
         }
-        // Drift (rotation) about the principal axes.
-        let mut q = s.pose.rot.into_inner();
-        free_rotor(&mut q, &mut big_pi, &ax, h);
-        let q1 = UnitQuaternion::new_unchecked(q);
-
-        // Kick at the new pose (the caller-normalized rotation: it is reused next step).
-        let mut out = So3State {
-            pose: crate::rotation::Pose { rot: q1, x },
-            vel: Vector6::zeros(),
-        };
-        let r1 = normalized(sys, &out).pose.rot.to_rotation_matrix().into_inner();
-        stats.rhs_evals += 1;
-        let (f1, tau1) = b.wrench(&r1, &x);
-        big_pi += r1.transpose() * tau1 * (0.5 * h);
-        if translates {
-            v += f1 * (0.5 * h / b.mass);
-        }
-        let omega1 = omega_from_pi(b, &big_pi);
-        out.vel = Vector6::new(v.x, v.y, v.z, omega1.x, omega1.y, omega1.z);
-
-        if !is_finite_state(&out) {
-            self.own.clear();
-            return Err(Failure::new(
-                FailureKind::NonFinite,
-                t + h,
-                "splitting: non-finite state",
-            ));
-        }
-        *s = out;
-        self.own.record(sys, s);
-        self.end_wrench = (f1, tau1);
+        free_rotor(&mut p.q, &mut p.pi, &ax, h);
         Ok(())
     }
 }
@@ -213,6 +181,7 @@ impl FixedStep<RigidSystem<So3, Body>> for Splitting {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::integrate::FixedStep;
     use crate::integrate::rigid_test_support as ts;
 
     ts::order_two_tests!("splitting", Splitting::new);
