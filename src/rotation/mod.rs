@@ -1,4 +1,6 @@
-//! Rotation parameterizations ("charts") of a rigid body's pose, behind one trait.
+//! Rotation parameterizations ("charts") of a rigid body's pose, behind one trait, and the
+//! rotation-only part of the charts that keep the translation apart (`RotationChart`,
+//! `rotation_chart.rs`: a node's rotation in a structure).
 //!
 //! A `PoseChart` stores the rotation (and, for the SE(3) charts, the translation together
 //! with it) in its own numbers and knows: the map to and from a rotation matrix, its
@@ -121,6 +123,9 @@ impl Formulation for Spatial {
 mod so3_chart;
 pub use so3_chart::So3;
 
+mod rotation_chart;
+pub use rotation_chart::RotationChart;
+
 pub mod dual_quat;
 pub mod euler;
 pub mod matrix;
@@ -157,6 +162,8 @@ macro_rules! for_each_chart {
 
 #[cfg(test)]
 mod conformance;
+#[cfg(test)]
+mod conformance_rotation;
 
 /// Coordinates of a chart that keeps the translation as a separate additive R^3.
 #[derive(Debug, Clone, Copy, PartialEq)]

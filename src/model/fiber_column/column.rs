@@ -27,7 +27,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use super::basic::{Basic, ElementFailure};
 use super::meter::Meter;
-use super::chart::RotationChart;
+use crate::rotation::RotationChart;
 use super::corotational::Corotational;
 use super::krylov::Krylov;
 use crate::math::lu::{DenseLu as Lu, LinearSolve};
@@ -165,9 +165,9 @@ pub struct Column<C: RotationChart> {
     /// Node displacements from `x0` (kept apart from the positions, so increments far below
     /// the positions' rounding, 4e-16 m at 3 m, are not lost).
     u: Vec<Vector3<f64>>,
-    rot: Vec<C::Coords>,
+    rot: Vec<C::Rot>,
     u_c: Vec<Vector3<f64>>,
-    rot_c: Vec<C::Coords>,
+    rot_c: Vec<C::Rot>,
     top_turn: f64,
     top_turn_c: f64,
     f_int: DVector<f64>,
@@ -180,7 +180,7 @@ pub struct Column<C: RotationChart> {
     assembled: bool,
     base: Vector3<f64>,
     u_ls: Vec<Vector3<f64>>,
-    rot_ls: Vec<C::Coords>,
+    rot_ls: Vec<C::Rot>,
     /// Trial evaluations of the line search since construction.
     pub line_evaluations: u64,
     krylov: Krylov,
@@ -327,7 +327,7 @@ impl<C: RotationChart> Column<C> {
             let o = 6 * (node - 1);
             self.u[node] += Vector3::new(dx[o], dx[o + 1], dx[o + 2]) * eta;
             let dw = Vector3::new(dx[o + 3], dx[o + 4], dx[o + 5]) * eta;
-            self.rot[node] = C::retract(&self.rot[node], &dw);
+            self.rot[node] = C::rotate(&self.rot[node], &dw);
         }
         // The rotation the chart actually applied (a first-order retraction turns by less
         // than |dw|), about global y.

@@ -3,7 +3,7 @@
 use nalgebra::DVector;
 
 use super::basic::{Basic, DispBased, ForceBased};
-use super::chart::{MatrixProj, QuatProj, RotationChart, Rotvec, So3};
+use crate::rotation::{MatrixProj, QuatProj, RotVec, RotationChart, So3};
 use super::column::{Algorithm, Column};
 use super::elastica::{elastica_tip, rollup_tip};
 use super::section::{ElasticSection, Section};
@@ -64,7 +64,7 @@ fn charts_agree_on_the_elastica() {
     let (r, _) = elastica_error::<So3>(10, 5.0, 10);
     for (name, e) in [
         ("quat_proj", elastica_error::<QuatProj>(10, 5.0, 10)),
-        ("rotvec", elastica_error::<Rotvec>(10, 5.0, 10)),
+        ("rotvec", elastica_error::<RotVec>(10, 5.0, 10)),
         ("matrix_proj", elastica_error::<MatrixProj>(10, 5.0, 10)),
     ] {
         assert!((e.0 - r).abs() < 1e-12, "{name}: {} vs {r}", e.0);
@@ -119,7 +119,7 @@ fn rollup_closes_with_every_chart() {
     }
     check::<So3>();
     check::<QuatProj>();
-    check::<Rotvec>();
+    check::<RotVec>();
     check::<MatrixProj>();
 }
 

@@ -71,7 +71,7 @@
 //! for linear problems only.
 use nalgebra::{DMatrix, DVector, Vector3};
 
-use super::chart::RotationChart;
+use crate::rotation::RotationChart;
 use crate::structural::gen_alpha::Coefficients;
 use super::column::{Algorithm, Column, Inertia, NewtonFailure, StepCount};
 
@@ -155,7 +155,7 @@ impl<C: RotationChart> Dynamic<C> {
     ///
     /// ```
     /// use mbdbench::model::fiber_column::basic::{Basic, ForceBased};
-    /// use mbdbench::model::fiber_column::chart::So3;
+    /// use mbdbench::rotation::So3;
     /// use mbdbench::model::fiber_column::column::{Algorithm, Column};
     /// use mbdbench::model::fiber_column::dynamic::{Dynamic, Scheme};
     /// use mbdbench::model::fiber_column::section::{ElasticSection, Section};
@@ -414,7 +414,7 @@ impl<C: RotationChart> Dynamic<C> {
 ///
 /// ```
 /// use mbdbench::model::fiber_column::basic::{Basic, ForceBased};
-/// use mbdbench::model::fiber_column::chart::So3;
+/// use mbdbench::rotation::So3;
 /// use mbdbench::model::fiber_column::column::Column;
 /// use mbdbench::model::fiber_column::dynamic::omega1;
 /// use mbdbench::model::fiber_column::section::{ElasticSection, Section};

@@ -1,7 +1,7 @@
 //! The fiber column's line in the family table: its `model` key, axes, metrics, columns and
 //! the table of its variants, each a run function monomorphised over the nodal rotation
 //! chart. `param` is the chart of the nodes' rotations (`so3`, `quat_proj`, `rotvec`,
-//! `matrix_proj`: `chart.rs`); the formulations are `force_based` (the case's element
+//! `matrix_proj`: the rotation module's `RotationChart`s); the formulations are `force_based` (the case's element
 //! count), `force_based_fine` (`fine_elements`, the static scenes' mesh check) and the
 //! displacement-based rivals `disp_based_n1`, `_n2`, `_n4`, `_n8` (that many elements); the
 //! integrators are the static solution algorithms `newton_load` (load control),
@@ -9,7 +9,7 @@
 //! (Krylov-accelerated, Carlson & Miller) under displacement control, and the dynamic
 //! schemes on the pulse (`newmark`, `hht`, `gen_alpha`, `midpoint`: `dynamic.rs`). Which apply to a scene follows from its loading (`problem.rs`,
 //! `na_reason`).
-use super::chart::{MatrixProj, QuatProj, RotationChart, Rotvec, So3};
+use crate::rotation::{MatrixProj, PoseChart, QuatProj, RotVec, So3};
 use super::column::Algorithm;
 use super::problem::FiberProblem;
 use super::dynamic::Scheme;
@@ -359,7 +359,7 @@ pub fn table() -> &'static [(Variant, RunFn)] {
         let mut rows: Vec<(&'static str, &'static str, &'static str, RunFn)> = vec![];
         so3_rows!(rows);
         chart_rows!(rows, QuatProj);
-        chart_rows!(rows, Rotvec);
+        chart_rows!(rows, RotVec);
         chart_rows!(rows, MatrixProj);
         rows.into_iter()
             .enumerate()

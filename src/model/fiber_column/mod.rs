@@ -1,6 +1,7 @@
 //! The cantilever fiber column (cases/README.md, "fiber_column"): a column of force-based or
 //! displacement-based fiber elements in a 3-D corotational frame whose nodal rotations are
-//! held in a rotation chart, with hysteretic fiber materials, under static load or
+//! held in a rotation chart (the `param` axis: the rotation module's `RotationChart`s
+//! `so3`, `quat_proj`, `rotvec`, `matrix_proj`), with hysteretic fiber materials, under static load or
 //! displacement control and under a ground-acceleration pulse.
 //!
 //! Files, bottom up: `material/` the uniaxial fiber materials (OpenSees' `Concrete01`,
@@ -8,8 +9,7 @@
 //! reverted state; `section.rs` the fiber and elastic sections and `layout.rs` their patches
 //! and bar layers; `quadrature.rs` the Lobatto and Legendre points; `basic.rs` the
 //! force-based and displacement-based elements in their basic system; `corotational.rs` the
-//! 3-D corotational transformation; `chart.rs` the nodal rotation charts (the `param`
-//! axis); `column.rs` the assembled cantilever and its Newton step (plain, line search, or
+//! 3-D corotational transformation; `column.rs` the assembled cantilever and its Newton step (plain, line search, or
 //! Krylov-accelerated with `krylov.rs`); `dynamic.rs` the driver of the ground-motion scene
 //! (Newmark, HHT, generalized-alpha, energy-consistent midpoint; energy books; `omega1`);
 //! `elastica.rs` the exact large-deflection cantilever (Bisshopp & Drucker) and the roll-up's circle, the
@@ -29,7 +29,6 @@ pub mod basic;
 pub mod case;
 #[cfg(test)]
 mod case_tests;
-pub mod chart;
 pub mod column;
 #[cfg(test)]
 mod column_tests;

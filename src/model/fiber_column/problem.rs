@@ -263,7 +263,7 @@ impl Problem for FiberProblem {
         let Loading::Pulse { mass, .. } = *self.loading() else {
             return None;
         };
-        let mut col = super::run::build::<super::chart::So3>(&self.setup, Form::ForceBased).ok()?;
+        let mut col = super::run::build::<crate::rotation::So3>(&self.setup, Form::ForceBased).ok()?;
         let mut log = super::run::Log::new(Keep::Final);
         super::run::prelude(&mut col, &self.setup, &mut log).ok()?;
         let w = super::dynamic::omega1(&mut col, mass).ok()?;

@@ -4,7 +4,7 @@
 //! shared with `dynamic_tests.rs`.
 use nalgebra::DVector;
 
-use super::chart::So3;
+use crate::rotation::So3;
 use super::column::{Algorithm, Column};
 use super::dynamic::{Dynamic, Scheme};
 use super::rc_tests::{H, P, rc_column, reference, reference_column};

@@ -3,7 +3,7 @@
 use nalgebra::DVector;
 
 use super::basic::{Basic, DispBased, ForceBased};
-use super::chart::{RotationChart, So3};
+use crate::rotation::{RotationChart, So3};
 use super::column::{Algorithm, Column, NewtonFailure, Prescribed};
 use super::layout::{Layer, Patch, fiber_section};
 use super::material::{

@@ -27,7 +27,7 @@ use nalgebra::DVector;
 
 use super::basic::{Basic, DispBased, ForceBased};
 use super::case::{ColumnCase, ColumnScene, Loading};
-use super::chart::RotationChart;
+use crate::rotation::RotationChart;
 use super::column::{Algorithm, Column, NewtonFailure, Prescribed, StepCount};
 use super::estimate::Mesh;
 use super::meter::Meter;

@@ -14,7 +14,7 @@
 //! Where it fails: a step whose Newton iteration does not converge ends the run with a
 //! typed `newton_failure` at that step's `t`.
 use super::case::Loading;
-use super::chart::RotationChart;
+use crate::rotation::RotationChart;
 use super::column::Algorithm;
 use super::dynamic::{Dynamic, Scheme};
 use super::run::{ColumnObs, Form, Keep, Log, RunOut, ColumnSetup, build, failure, prelude, steps};
