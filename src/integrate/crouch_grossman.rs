@@ -25,11 +25,10 @@
 //! Invariants: the state moves only by `retract` (stays on the group up to rounding); the
 //! stages are a fixed array on the stack of each step (no allocation). Failure: a non-finite
 //! stage value is a `non_finite` failure, the state is left unchanged.
-use super::explicit_rk::FixedTableau;
+use super::explicit_rk::{FixedTableau, fixed_tableau, tableau_method};
 use super::tableau::{MAX_STAGES, Tableau};
 use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats, System};
 use crate::math::vector::Vector;
-use std::marker::PhantomData;
 
 /// Lie-Euler: `x (+) h f(t, x)`.
 pub const LIE_EULER: Tableau = Tableau {
@@ -49,41 +48,14 @@ pub const CG3: Tableau = Tableau {
     b: &[13.0 / 51.0, -2.0 / 3.0, 24.0 / 17.0],
 };
 
-/// Lie-Euler's tableau as a type.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct LieEulerTableau;
-impl FixedTableau for LieEulerTableau {
-    const TAB: &'static Tableau = &LIE_EULER;
-}
-
-/// CG3's tableau as a type.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Cg3Tableau;
-impl FixedTableau for Cg3Tableau {
-    const TAB: &'static Tableau = &CG3;
-}
-
-/// The Crouch-Grossman method of tableau `T` (coefficients satisfying the CG order
-/// conditions), known at compile time like `ExplicitRk`'s: the stage loop is unrolled. It
-/// holds no state; the stages live on the stack of one step.
-#[derive(Debug, Clone, Copy)]
-pub struct CrouchGrossman<S: System, T: FixedTableau> {
-    _m: PhantomData<(S, T)>,
-}
-
-impl<S: System, T: FixedTableau> CrouchGrossman<S, T> {
-    /// The method of tableau `T` (at most `MAX_STAGES` stages, checked at compile time).
-    pub const fn new() -> Self {
-        const { assert!(T::TAB.stages() <= MAX_STAGES, "tableau too large") };
-        CrouchGrossman { _m: PhantomData }
-    }
-}
-
-impl<S: System, T: FixedTableau> Default for CrouchGrossman<S, T> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
+fixed_tableau!(LieEulerTableau, LIE_EULER, "Lie-Euler's tableau as a type.");
+fixed_tableau!(Cg3Tableau, CG3, "CG3's tableau as a type.");
+tableau_method!(
+    CrouchGrossman,
+    "The Crouch-Grossman method of tableau `T` (coefficients satisfying the CG order \
+     conditions), known at compile time like `ExplicitRk`'s: the stage loop is unrolled. It \
+     holds no state; the stages live on the stack of one step."
+);
 
 impl<S: System> CrouchGrossman<S, LieEulerTableau> {
     /// Lie-Euler, order 1.

@@ -27,7 +27,6 @@
 use super::tableau::{EULER, MAX_STAGES, RK4, Tableau};
 use super::{Failure, FailureKind, FixedStep, MethodInfo, MethodKind, Stats, System};
 use crate::math::vector::Vector;
-use std::marker::PhantomData;
 
 /// `h sum_i w_i k_i`, skipping zero weights (the skipped terms are exact zeros, so this is
 /// the same number as the full sum).
@@ -78,40 +77,63 @@ pub trait FixedTableau: Send + Sync + 'static {
     const TAB: &'static Tableau;
 }
 
-/// Explicit Euler's tableau as a type.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct EulerTableau;
-impl FixedTableau for EulerTableau {
-    const TAB: &'static Tableau = &EULER;
+/// A unit type naming a tableau known at compile time: `fixed_tableau!(Name, TABLEAU,
+/// "doc")`.
+macro_rules! fixed_tableau {
+    ($name:ident, $tab:expr, $doc:literal) => {
+        #[doc = $doc]
+        #[derive(Debug, Clone, Copy, Default)]
+        pub struct $name;
+        impl $crate::integrate::explicit_rk::FixedTableau for $name {
+            const TAB: &'static $crate::integrate::tableau::Tableau = &$tab;
+        }
+    };
 }
+pub(super) use fixed_tableau;
 
-/// Classical RK4's tableau as a type.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Rk4Tableau;
-impl FixedTableau for Rk4Tableau {
-    const TAB: &'static Tableau = &RK4;
-}
+/// A stateless one-step method over a tableau type `T` (the stages live on the stack of one
+/// step), with `new` (the stage count checked against `MAX_STAGES` at compile time) and
+/// `Default`: `tableau_method!(Name, "doc")`.
+macro_rules! tableau_method {
+    ($name:ident, $doc:literal) => {
+        #[doc = $doc]
+        #[derive(Debug, Clone, Copy)]
+        pub struct $name<S: System, T: FixedTableau> {
+            _m: std::marker::PhantomData<(S, T)>,
+        }
 
-/// An explicit Runge-Kutta (Munthe-Kaas) method with the tableau `T`. It holds no state: the
-/// stages live on the stack of one step.
-#[derive(Debug, Clone, Copy)]
-pub struct ExplicitRk<S: System, T: FixedTableau> {
-    _m: PhantomData<(S, T)>,
-}
+        impl<S: System, T: FixedTableau> $name<S, T> {
+            /// The method of tableau `T` (at most `MAX_STAGES` stages, checked at compile
+            /// time).
+            pub const fn new() -> Self {
+                const {
+                    assert!(
+                        T::TAB.stages() <= $crate::integrate::tableau::MAX_STAGES,
+                        "tableau too large"
+                    )
+                };
+                $name {
+                    _m: std::marker::PhantomData,
+                }
+            }
+        }
 
-impl<S: System, T: FixedTableau> ExplicitRk<S, T> {
-    /// The method of tableau `T` (at most `MAX_STAGES` stages, checked at compile time).
-    pub const fn new() -> Self {
-        const { assert!(T::TAB.stages() <= MAX_STAGES, "tableau too large") };
-        ExplicitRk { _m: PhantomData }
-    }
+        impl<S: System, T: FixedTableau> Default for $name<S, T> {
+            fn default() -> Self {
+                Self::new()
+            }
+        }
+    };
 }
+pub(super) use tableau_method;
 
-impl<S: System, T: FixedTableau> Default for ExplicitRk<S, T> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
+fixed_tableau!(EulerTableau, EULER, "Explicit Euler's tableau as a type.");
+fixed_tableau!(Rk4Tableau, RK4, "Classical RK4's tableau as a type.");
+tableau_method!(
+    ExplicitRk,
+    "An explicit Runge-Kutta (Munthe-Kaas) method with the tableau `T`. It holds no state: \
+     the stages live on the stack of one step."
+);
 
 impl<S: System> ExplicitRk<S, EulerTableau> {
     /// Explicit Euler (Lie-Euler on a Lie group), order 1.
