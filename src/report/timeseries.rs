@@ -148,6 +148,62 @@ pub fn plot(
         Quantity::Constraint { .. } => ("constraint", "constraint residual", "constraint residual"),
         Quantity::Track { .. } => return None,
     };
+    let found = quantity_lines(cv, sv, series_root, q, sel);
+    let used: Vec<String> = found
+        .steps
+        .iter()
+        .map(|(step, integ)| format!("{step} ({})", integ.join(", ")))
+        .collect();
+    if found.lines.is_empty() && found.unbooked > 0 {
+        return None;
+    }
+    let caption = quantity_caption(cv, q, sel, &used, &found)?;
+    Some(Plot {
+        id: format!("{}/{id}_{}", sv.name, sel.id),
+        title: format!(
+            "{}/{}: {name} {} ({})",
+            cv.name,
+            sv.name,
+            over(cv, &sv.name),
+            sel.short
+        ),
+        x_label: data::t_labels(cv, &sv.name).0.into(),
+        y_label: y_label.into(),
+        x: Scale::Linear,
+        y: Scale::Log,
+        lines: found.lines,
+        fails: vec![],
+        legend: Legend::Factored,
+        caption,
+        footer: footer.into(),
+        round_off: Some(format!("{name} ({})", sel.short)),
+    })
+}
+
+/// The lines of an energy or constraint plot and what its caption says of the variants.
+struct QuantityLines {
+    /// One line per admitted variant with values.
+    lines: Vec<Line>,
+    /// The step labels of the completed runs drawn, each with its integrators.
+    steps: BTreeMap<String, Vec<String>>,
+    /// Variants without a drawn run or a series file, with why.
+    missing: Vec<String>,
+    /// The charts without a residual (a constraint plot).
+    unconstrained: Vec<String>,
+    /// Failed runs drawn up to their failure.
+    failed: Vec<String>,
+    /// Runs without energy books (a balance plot).
+    unbooked: usize,
+}
+
+/// Each admitted variant's line of quantity `q` from its drawn run's series file.
+fn quantity_lines(
+    cv: &CaseView,
+    sv: &SceneView,
+    series_root: &Path,
+    q: Quantity,
+    sel: &Panel,
+) -> QuantityLines {
     let mut lines = vec![];
     let mut steps: BTreeMap<String, Vec<String>> = BTreeMap::new();
     let mut missing: Vec<String> = vec![];
@@ -163,20 +219,7 @@ pub fn plot(
             missing.push(format!("{} (no series file)", v.key.label()));
             continue;
         };
-        let ys: Vec<Option<f64>> = match q {
-            Quantity::Energy => energy_drift(&s.energy, cv.energy_scale)
-                .into_iter()
-                .map(Some)
-                .collect(),
-            Quantity::Balance { .. } => {
-                let scale = cv.energy_scale.filter(|x| *x > 0.0).unwrap_or(1.0);
-                s.energy
-                    .iter()
-                    .map(|e| e.is_finite().then(|| e.abs() / scale))
-                    .collect()
-            }
-            _ => s.constraint.clone(),
-        };
+        let ys = quantity_values(q, &s, cv.energy_scale);
         if matches!(q, Quantity::Balance { .. }) && ys.iter().all(Option::is_none) {
             unbooked += 1;
             continue;
@@ -205,13 +248,49 @@ pub fn plot(
             marker_every: (n / 8).max(1),
         });
     }
-    let used: Vec<String> = steps
-        .iter()
-        .map(|(step, integ)| format!("{step} ({})", integ.join(", ")))
-        .collect();
-    if lines.is_empty() && unbooked > 0 {
-        return None;
+    QuantityLines {
+        lines,
+        steps,
+        missing,
+        unconstrained,
+        failed,
+        unbooked,
     }
+}
+
+/// A series' values of quantity `q` (energy drift, balance residual or constraint residual)
+/// at its times; None where there is none.
+fn quantity_values(
+    q: Quantity,
+    s: &crate::summary::Series,
+    energy_scale: Option<f64>,
+) -> Vec<Option<f64>> {
+    match q {
+        Quantity::Energy => energy_drift(&s.energy, energy_scale)
+            .into_iter()
+            .map(Some)
+            .collect(),
+        Quantity::Balance { .. } => {
+            let scale = energy_scale.filter(|x| *x > 0.0).unwrap_or(1.0);
+            s.energy
+                .iter()
+                .map(|e| e.is_finite().then(|| e.abs() / scale))
+                .collect()
+        }
+        _ => s.constraint.clone(),
+    }
+}
+
+/// The caption of an energy or constraint plot (what it shows, the panel's variants, the
+/// steps drawn, the failed, the charts without a residual, the missing); None when no
+/// variant has a line, none is missing and some chart has no residual (no plot).
+fn quantity_caption(
+    cv: &CaseView,
+    q: Quantity,
+    sel: &Panel,
+    used: &[String],
+    found: &QuantityLines,
+) -> Option<String> {
     let mut caption = match q {
         Quantity::Constraint { what } => what.to_string(),
         Quantity::Balance { what, books } => format!(
@@ -233,44 +312,25 @@ pub fn plot(
             used.join("; ")
         }
     ));
-    if !failed.is_empty() {
+    if !found.failed.is_empty() {
         caption.push_str(&format!(
             " No completed run, drawn up to the failure at its finest step: {}.",
-            failed.join("; ")
+            found.failed.join("; ")
         ));
     }
-    if lines.is_empty() && missing.is_empty() && !unconstrained.is_empty() {
+    if found.lines.is_empty() && found.missing.is_empty() && !found.unconstrained.is_empty() {
         return None;
     }
-    if !unconstrained.is_empty() {
+    if !found.unconstrained.is_empty() {
         caption.push_str(&format!(
             " No residual (minimal charts): {}.",
-            unconstrained.join(", ")
+            found.unconstrained.join(", ")
         ));
     }
-    if !missing.is_empty() {
-        caption.push_str(&format!(" No data: {}.", missing.join("; ")));
+    if !found.missing.is_empty() {
+        caption.push_str(&format!(" No data: {}.", found.missing.join("; ")));
     }
-    Some(Plot {
-        id: format!("{}/{id}_{}", sv.name, sel.id),
-        title: format!(
-            "{}/{}: {name} {} ({})",
-            cv.name,
-            sv.name,
-            over(cv, &sv.name),
-            sel.short
-        ),
-        x_label: data::t_labels(cv, &sv.name).0.into(),
-        y_label: y_label.into(),
-        x: Scale::Linear,
-        y: Scale::Log,
-        lines,
-        fails: vec![],
-        legend: Legend::Factored,
-        caption,
-        footer: footer.into(),
-        round_off: Some(format!("{name} ({})", sel.short)),
-    })
+    Some(caption)
 }
 
 /// One panel of a `Quantity::Track` plot: a line per formulation of `group` (see
