@@ -7,6 +7,21 @@ use super::*;
 
 pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
     let cases = load_cases(common)?;
+    let mut p = compile_scene(&cases, a)?;
+    let family = p.family();
+    check_axis_names(family, a)?;
+    let (param, formulation, v) = choose_variant(&*p, family, a)?;
+    let (stepping, value) = choose_stepping(a, v)?;
+    fit_run_to_case(&mut *p, &cases, a, v, value)?;
+    let out = p.run(v, stepping, Want::Trajectory)?;
+    let (doc, step_key, step) =
+        trajectory_document(a, family, &param, &formulation, stepping, &out)?;
+    write_trajectory(&a.out, doc)?;
+    Ok(announce(a, out, &param, &formulation, step_key, step))
+}
+
+/// The compiled problem of `--case`'s `--scene`, refusing a scene the case does not have.
+fn compile_scene(cases: &[Case], a: &TrajectoryArgs) -> Result<Box<dyn problem::Problem>, String> {
     if let Some(c) = cases.iter().find(|c| c.name == a.case)
         && c.scene(&a.scene).is_none()
     {
@@ -18,16 +33,18 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
             known.join(", ")
         ));
     }
-    let mut p = crate::catalogue::problems(
-        &cases,
+    crate::catalogue::problems(
+        cases,
         std::slice::from_ref(&a.case),
         std::slice::from_ref(&a.scene),
     )?
     .into_iter()
     .find(|p| p.case() == a.case && p.scene() == a.scene)
-    .ok_or_else(|| format!("--scene {}: not in case {}", a.scene, a.case))?;
-    let family = p.family();
-    // An unknown name on an axis is refused with the family's valid names, as `run` does.
+    .ok_or_else(|| format!("--scene {}: not in case {}", a.scene, a.case))
+}
+
+/// Refuses an unknown name on an axis with the family's valid names, as `run` does.
+fn check_axis_names(family: &Family, a: &TrajectoryArgs) -> Result<(), String> {
     for (flag, name, valid) in [
         ("--param", a.param.as_deref(), family.axes.params),
         (
@@ -51,6 +68,16 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
             ));
         }
     }
+    Ok(())
+}
+
+/// The parameter, the formulation (the family's first by default) and their registered
+/// variant, refused when it is not registered or is n/a on this problem.
+fn choose_variant(
+    p: &dyn problem::Problem,
+    family: &Family,
+    a: &TrajectoryArgs,
+) -> Result<(String, String, &'static problem::Variant), String> {
     let param = match (&a.param, family.axes.params) {
         (Some(x), _) => x.clone(),
         (None, ["none"]) => "none".into(),
@@ -81,6 +108,12 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
             a.integrator
         ));
     }
+    Ok((param, formulation, v))
+}
+
+/// The stepping `--dt` or `--tol` gives the variant (the one its method takes) and its value,
+/// which must be a positive number.
+fn choose_stepping(a: &TrajectoryArgs, v: &problem::Variant) -> Result<(Stepping, f64), String> {
     let stepping = match (a.dt, a.tol, v.info.adaptive) {
         (Some(h), None, false) => Stepping::Dt(h),
         (None, Some(t), true) => Stepping::Tol(t),
@@ -104,6 +137,18 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
     if !(value.is_finite() && value > 0.0) {
         return Err(format!("--dt/--tol {value}: must be a positive number"));
     }
+    Ok((stepping, value))
+}
+
+/// Sets `--t-end` on the problem, and refuses a fixed step that does not divide
+/// `score_every` or whose run would exceed the case's step budget.
+fn fit_run_to_case(
+    p: &mut dyn problem::Problem,
+    cases: &[Case],
+    a: &TrajectoryArgs,
+    v: &problem::Variant,
+    value: f64,
+) -> Result<(), String> {
     if let Some(t) = a.t_end {
         if !(t.is_finite() && t > 0.0) {
             return Err(format!("--t-end {t}: must be a positive number"));
@@ -124,14 +169,26 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
     {
         return Err(format!("--dt {value}: {why}"));
     }
-    let out = p.run(v, stepping, Want::Trajectory)?;
+    Ok(())
+}
+
+/// The trajectory file's fields (names, step or tolerance, units, status, failure, columns),
+/// with the step's key (`dt` or `tol`) and value.
+fn trajectory_document<'a>(
+    a: &'a TrajectoryArgs,
+    family: &Family,
+    param: &'a str,
+    formulation: &'a str,
+    stepping: Stepping,
+    out: &'a problem::Outcome,
+) -> Result<(BTreeMap<&'a str, Field<'a>>, &'static str, f64), String> {
     let mut doc: BTreeMap<&str, Field> = BTreeMap::new();
     for (k, x) in [
         ("case", a.case.as_str()),
         ("scene", &a.scene),
-        ("param", &param),
+        ("param", param),
         ("integrator", &a.integrator),
-        ("formulation", &formulation),
+        ("formulation", formulation),
         ("git_commit", crate::summary::git_commit()),
     ] {
         doc.insert(k, Field::Value(x.into()));
@@ -164,10 +221,26 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
             doc.insert(name, Field::Numbers(values, *width));
         }
     }
-    reference::write_atomic_with(&a.out, |w| {
+    Ok((doc, step_key, step))
+}
+
+/// Writes the document to `--out` in one step (nothing partial on an error).
+fn write_trajectory(path: &std::path::Path, doc: BTreeMap<&str, Field>) -> Result<(), String> {
+    reference::write_atomic_with(path, |w| {
         serde_json::to_writer(w, &doc).map_err(std::io::Error::from)
     })
-    .map_err(|e| format!("{}: {e}", a.out.display()))?;
+    .map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Says what was written, tells a failed run's failure, and returns the exit status.
+fn announce(
+    a: &TrajectoryArgs,
+    out: problem::Outcome,
+    param: &str,
+    formulation: &str,
+    step_key: &str,
+    step: f64,
+) -> i32 {
     let samples = out.columns.as_ref().map_or(0, |c| c.t.len());
     crate::say!(
         "trajectory: {} ({samples} samples of {}/{}/{param}/{}/{formulation} at {step_key} = \
@@ -184,9 +257,9 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
             f.t,
             f.message
         );
-        return Ok(EXIT_FAILED);
+        return EXIT_FAILED;
     }
-    Ok(EXIT_OK)
+    EXIT_OK
 }
 
 /// One field of the trajectory file: a value, or samples of `width` numbers each, written

@@ -148,6 +148,62 @@ pub fn plot(
         Quantity::Constraint { .. } => ("constraint", "constraint residual", "constraint residual"),
         Quantity::Track { .. } => return None,
     };
+    let found = quantity_lines(cv, sv, series_root, q, sel);
+    let used: Vec<String> = found
+        .steps
+        .iter()
+        .map(|(step, integ)| format!("{step} ({})", integ.join(", ")))
+        .collect();
+    if found.lines.is_empty() && found.unbooked > 0 {
+        return None;
+    }
+    let caption = quantity_caption(cv, q, sel, &used, &found)?;
+    Some(Plot {
+        id: format!("{}/{id}_{}", sv.name, sel.id),
+        title: format!(
+            "{}/{}: {name} {} ({})",
+            cv.name,
+            sv.name,
+            over(cv, &sv.name),
+            sel.short
+        ),
+        x_label: data::t_labels(cv, &sv.name).0.into(),
+        y_label: y_label.into(),
+        x: Scale::Linear,
+        y: Scale::Log,
+        lines: found.lines,
+        fails: vec![],
+        legend: Legend::Factored,
+        caption,
+        footer: footer.into(),
+        round_off: Some(format!("{name} ({})", sel.short)),
+    })
+}
+
+/// The lines of an energy or constraint plot and what its caption says of the variants.
+struct QuantityLines {
+    /// One line per admitted variant with values.
+    lines: Vec<Line>,
+    /// The step labels of the completed runs drawn, each with its integrators.
+    steps: BTreeMap<String, Vec<String>>,
+    /// Variants without a drawn run or a series file, with why.
+    missing: Vec<String>,
+    /// The charts without a residual (a constraint plot).
+    unconstrained: Vec<String>,
+    /// Failed runs drawn up to their failure.
+    failed: Vec<String>,
+    /// Runs without energy books (a balance plot).
+    unbooked: usize,
+}
+
+/// Each admitted variant's line of quantity `q` from its drawn run's series file.
+fn quantity_lines(
+    cv: &CaseView,
+    sv: &SceneView,
+    series_root: &Path,
+    q: Quantity,
+    sel: &Panel,
+) -> QuantityLines {
     let mut lines = vec![];
     let mut steps: BTreeMap<String, Vec<String>> = BTreeMap::new();
     let mut missing: Vec<String> = vec![];
@@ -163,20 +219,7 @@ pub fn plot(
             missing.push(format!("{} (no series file)", v.key.label()));
             continue;
         };
-        let ys: Vec<Option<f64>> = match q {
-            Quantity::Energy => energy_drift(&s.energy, cv.energy_scale)
-                .into_iter()
-                .map(Some)
-                .collect(),
-            Quantity::Balance { .. } => {
-                let scale = cv.energy_scale.filter(|x| *x > 0.0).unwrap_or(1.0);
-                s.energy
-                    .iter()
-                    .map(|e| e.is_finite().then(|| e.abs() / scale))
-                    .collect()
-            }
-            _ => s.constraint.clone(),
-        };
+        let ys = quantity_values(q, &s, cv.energy_scale);
         if matches!(q, Quantity::Balance { .. }) && ys.iter().all(Option::is_none) {
             unbooked += 1;
             continue;
@@ -205,13 +248,49 @@ pub fn plot(
             marker_every: (n / 8).max(1),
         });
     }
-    let used: Vec<String> = steps
-        .iter()
-        .map(|(step, integ)| format!("{step} ({})", integ.join(", ")))
-        .collect();
-    if lines.is_empty() && unbooked > 0 {
-        return None;
+    QuantityLines {
+        lines,
+        steps,
+        missing,
+        unconstrained,
+        failed,
+        unbooked,
     }
+}
+
+/// A series' values of quantity `q` (energy drift, balance residual or constraint residual)
+/// at its times; None where there is none.
+fn quantity_values(
+    q: Quantity,
+    s: &crate::summary::Series,
+    energy_scale: Option<f64>,
+) -> Vec<Option<f64>> {
+    match q {
+        Quantity::Energy => energy_drift(&s.energy, energy_scale)
+            .into_iter()
+            .map(Some)
+            .collect(),
+        Quantity::Balance { .. } => {
+            let scale = energy_scale.filter(|x| *x > 0.0).unwrap_or(1.0);
+            s.energy
+                .iter()
+                .map(|e| e.is_finite().then(|| e.abs() / scale))
+                .collect()
+        }
+        _ => s.constraint.clone(),
+    }
+}
+
+/// The caption of an energy or constraint plot (what it shows, the panel's variants, the
+/// steps drawn, the failed, the charts without a residual, the missing); None when no
+/// variant has a line, none is missing and some chart has no residual (no plot).
+fn quantity_caption(
+    cv: &CaseView,
+    q: Quantity,
+    sel: &Panel,
+    used: &[String],
+    found: &QuantityLines,
+) -> Option<String> {
     let mut caption = match q {
         Quantity::Constraint { what } => what.to_string(),
         Quantity::Balance { what, books } => format!(
@@ -233,44 +312,25 @@ pub fn plot(
             used.join("; ")
         }
     ));
-    if !failed.is_empty() {
+    if !found.failed.is_empty() {
         caption.push_str(&format!(
             " No completed run, drawn up to the failure at its finest step: {}.",
-            failed.join("; ")
+            found.failed.join("; ")
         ));
     }
-    if lines.is_empty() && missing.is_empty() && !unconstrained.is_empty() {
+    if found.lines.is_empty() && found.missing.is_empty() && !found.unconstrained.is_empty() {
         return None;
     }
-    if !unconstrained.is_empty() {
+    if !found.unconstrained.is_empty() {
         caption.push_str(&format!(
             " No residual (minimal charts): {}.",
-            unconstrained.join(", ")
+            found.unconstrained.join(", ")
         ));
     }
-    if !missing.is_empty() {
-        caption.push_str(&format!(" No data: {}.", missing.join("; ")));
+    if !found.missing.is_empty() {
+        caption.push_str(&format!(" No data: {}.", found.missing.join("; ")));
     }
-    Some(Plot {
-        id: format!("{}/{id}_{}", sv.name, sel.id),
-        title: format!(
-            "{}/{}: {name} {} ({})",
-            cv.name,
-            sv.name,
-            over(cv, &sv.name),
-            sel.short
-        ),
-        x_label: data::t_labels(cv, &sv.name).0.into(),
-        y_label: y_label.into(),
-        x: Scale::Linear,
-        y: Scale::Log,
-        lines,
-        fails: vec![],
-        legend: Legend::Factored,
-        caption,
-        footer: footer.into(),
-        round_off: Some(format!("{name} ({})", sel.short)),
-    })
+    Some(caption)
 }
 
 /// One panel of a `Quantity::Track` plot: a line per formulation of `group` (see
@@ -295,104 +355,17 @@ fn track_plot(
     else {
         return None;
     };
-    // Points of a column: against time, or against the x column of the same series.
-    let against = |s: &crate::summary::Series, ys: &[Option<f64>], x_col: &str| match x {
-        None => pairs(&s.t, ys),
-        Some(_) => match s.tracks.get(x_col) {
-            Some(xs) => xs
-                .iter()
-                .zip(ys)
-                .filter_map(|(a, b)| Some(((*a)?, (*b)?)))
-                .collect(),
-            None => vec![],
-        },
-    };
-    let ran = |f: &str| sv.variants.iter().any(|v| v.key.formulation == f);
-    if !group.formulations.iter().any(|f| ran(f)) {
+    if !group.formulations.iter().any(|f| ran(sv, f)) {
         return None;
     }
-    let mut lines: Vec<Line> = vec![];
-    let mut reference: Vec<(f64, f64)> = vec![];
-    let mut missing: Vec<String> = vec![];
-    let mut used: Vec<String> = vec![];
-    for f in group.formulations.iter().filter(|f| ran(f)) {
-        let candidates: Vec<(&data::VariantRuns, &Record)> = sv
-            .variants
-            .iter()
-            .filter(|v| v.key.formulation == *f)
-            .filter_map(|v| Some((v, drawn(cv, v)?)))
-            // Only runs whose series was kept (a family's selection may keep a subset).
-            .filter(|(_, r)| r.series.is_some())
-            .collect();
-        // A completed run first, on an integrator no line of the panel uses yet.
-        let fresh =
-            |v: &data::VariantRuns| !lines.iter().any(|l| l.key.integrator == v.key.integrator);
-        let pick = candidates
-            .iter()
-            .find(|(v, r)| r.status == Status::Ok && fresh(v))
-            .or_else(|| candidates.iter().find(|(_, r)| r.status == Status::Ok))
-            .or_else(|| candidates.first());
-        let Some(&(v, r)) = pick else {
-            missing.push(format!("{f} (no drawn run)"));
-            continue;
-        };
-        let Some(s) = data::load_series(series_root, r) else {
-            missing.push(format!("{} (no series file)", v.key.label()));
-            continue;
-        };
-        let Some(track) = s.tracks.get(column) else {
-            missing.push(format!("{} (no {column} in its series)", v.key.label()));
-            continue;
-        };
-        let x_ref = x.map_or("", |x| x.1);
-        let refs = against(&s, s.tracks.get(r_col).map_or(&[][..], |x| &x[..]), x_ref);
-        if refs.len() > reference.len() {
-            reference = refs;
-        }
-        let how = match &r.failure {
-            Some(fail) if r.status != Status::Ok => format!(
-                "{}, failed at t = {}",
-                data::step_label(r),
-                data::time(fail.t)
-            ),
-            _ => data::step_label(r),
-        };
-        used.push(format!("{f}: {} at {how}", v.key.integrator));
-        let points = against(&s, track, x.map_or("", |x| x.0));
-        let n = points.len();
-        lines.push(Line {
-            key: v.key.clone(),
-            points,
-            label: Some(format!("{f} ({}, {how})", v.key.integrator)),
-            marker_every: (n / 8).max(1),
-        });
-    }
-    if !reference.is_empty() && !lines.is_empty() {
-        let n = reference.len();
-        lines.push(Line {
-            key: VariantKey {
-                param: lines[0].key.param.clone(),
-                integrator: REFERENCE.into(),
-                formulation: lines[0].key.formulation.clone(),
-            },
-            points: reference,
-            label: Some("reference".into()),
-            marker_every: n.max(1),
-        });
-    }
-    let mut caption = format!(
-        "{what} One line per formulation, on the first of its integrators (a different one for \
-         each line where possible) at its coarsest completed ladder point; a formulation without \
-         a completed run is drawn up to its failure: {}.",
-        if used.is_empty() {
-            "none".to_string()
-        } else {
-            used.join("; ")
-        }
-    );
-    if !missing.is_empty() {
-        caption.push_str(&format!(" No data: {}.", missing.join("; ")));
-    }
+    let TrackLines {
+        mut lines,
+        reference,
+        missing,
+        used,
+    } = track_lines(cv, sv, series_root, group, (column, r_col, x));
+    push_reference_line(&mut lines, reference);
+    let caption = track_caption(what, &used, &missing);
     Some(Plot {
         id: format!("{}/{id}_{}", sv.name, group.id),
         title: match x {
@@ -419,6 +392,177 @@ fn track_plot(
         footer: footer.into(),
         round_off: None,
     })
+}
+
+/// Whether some variant of formulation `f` ran in the scene.
+fn ran(sv: &SceneView, f: &str) -> bool {
+    sv.variants.iter().any(|v| v.key.formulation == f)
+}
+
+/// The columns a Track plot draws: its column, the reference's column, and the x columns
+/// (`Quantity::Track`'s `column`, `reference`, `x`).
+type TrackColumns = (
+    &'static str,
+    &'static str,
+    Option<(&'static str, &'static str, &'static str)>,
+);
+
+/// The lines of a Track panel and what its caption says of its formulations.
+struct TrackLines {
+    /// One line per formulation drawn.
+    lines: Vec<Line>,
+    /// The longest reference series among the drawn runs.
+    reference: Vec<(f64, f64)>,
+    /// Formulations or variants without data, with why.
+    missing: Vec<String>,
+    /// Each drawn formulation's integrator and step (and failure).
+    used: Vec<String>,
+}
+
+/// A line per formulation of `group` that ran, from its picked run's series, and the
+/// reference from the longest of those series.
+fn track_lines(
+    cv: &CaseView,
+    sv: &SceneView,
+    series_root: &Path,
+    group: &FormulationGroup,
+    (column, r_col, x): TrackColumns,
+) -> TrackLines {
+    let mut lines: Vec<Line> = vec![];
+    let mut reference: Vec<(f64, f64)> = vec![];
+    let mut missing: Vec<String> = vec![];
+    let mut used: Vec<String> = vec![];
+    for f in group.formulations.iter().filter(|f| ran(sv, f)) {
+        let Some((v, r)) = pick_track_run(cv, sv, f, &lines) else {
+            missing.push(format!("{f} (no drawn run)"));
+            continue;
+        };
+        let Some(s) = data::load_series(series_root, r) else {
+            missing.push(format!("{} (no series file)", v.key.label()));
+            continue;
+        };
+        let Some(track) = s.tracks.get(column) else {
+            missing.push(format!("{} (no {column} in its series)", v.key.label()));
+            continue;
+        };
+        let x_ref = x.map_or("", |x| x.1);
+        let refs = track_points(
+            &s,
+            s.tracks.get(r_col).map_or(&[][..], |x| &x[..]),
+            x,
+            x_ref,
+        );
+        if refs.len() > reference.len() {
+            reference = refs;
+        }
+        let how = match &r.failure {
+            Some(fail) if r.status != Status::Ok => format!(
+                "{}, failed at t = {}",
+                data::step_label(r),
+                data::time(fail.t)
+            ),
+            _ => data::step_label(r),
+        };
+        used.push(format!("{f}: {} at {how}", v.key.integrator));
+        let points = track_points(&s, track, x, x.map_or("", |x| x.0));
+        let n = points.len();
+        lines.push(Line {
+            key: v.key.clone(),
+            points,
+            label: Some(format!("{f} ({}, {how})", v.key.integrator)),
+            marker_every: (n / 8).max(1),
+        });
+    }
+    TrackLines {
+        lines,
+        reference,
+        missing,
+        used,
+    }
+}
+
+/// The run a Track panel draws for formulation `f`: among its variants' drawn runs that kept
+/// a series, a completed run on an integrator no line of the panel uses yet, else a completed
+/// run, else the first.
+fn pick_track_run<'a, 'b>(
+    cv: &CaseView,
+    sv: &'b SceneView<'a>,
+    f: &str,
+    lines: &[Line],
+) -> Option<(&'b data::VariantRuns<'a>, &'a Record)> {
+    let candidates: Vec<(&data::VariantRuns, &Record)> = sv
+        .variants
+        .iter()
+        .filter(|v| v.key.formulation == *f)
+        .filter_map(|v| Some((v, drawn(cv, v)?)))
+        // Only runs whose series was kept (a family's selection may keep a subset).
+        .filter(|(_, r)| r.series.is_some())
+        .collect();
+    // A completed run first, on an integrator no line of the panel uses yet.
+    let fresh = |v: &data::VariantRuns| !lines.iter().any(|l| l.key.integrator == v.key.integrator);
+    let pick = candidates
+        .iter()
+        .find(|(v, r)| r.status == Status::Ok && fresh(v))
+        .or_else(|| candidates.iter().find(|(_, r)| r.status == Status::Ok))
+        .or_else(|| candidates.first());
+    pick.copied()
+}
+
+/// Points of a column: against time, or against the x column `x_col` of the same series.
+fn track_points(
+    s: &crate::summary::Series,
+    ys: &[Option<f64>],
+    x: Option<(&str, &str, &str)>,
+    x_col: &str,
+) -> Vec<(f64, f64)> {
+    match x {
+        None => pairs(&s.t, ys),
+        Some(_) => match s.tracks.get(x_col) {
+            Some(xs) => xs
+                .iter()
+                .zip(ys)
+                .filter_map(|(a, b)| Some(((*a)?, (*b)?)))
+                .collect(),
+            None => vec![],
+        },
+    }
+}
+
+/// The reference line (drawn in ink, under the first line's names) when there are a reference
+/// and a line.
+fn push_reference_line(lines: &mut Vec<Line>, reference: Vec<(f64, f64)>) {
+    if !reference.is_empty() && !lines.is_empty() {
+        let n = reference.len();
+        lines.push(Line {
+            key: VariantKey {
+                param: lines[0].key.param.clone(),
+                integrator: REFERENCE.into(),
+                formulation: lines[0].key.formulation.clone(),
+            },
+            points: reference,
+            label: Some("reference".into()),
+            marker_every: n.max(1),
+        });
+    }
+}
+
+/// A Track panel's caption: `what`, how each formulation's run was picked, the runs drawn,
+/// and the missing.
+fn track_caption(what: &str, used: &[String], missing: &[String]) -> String {
+    let mut caption = format!(
+        "{what} One line per formulation, on the first of its integrators (a different one for \
+         each line where possible) at its coarsest completed ladder point; a formulation without \
+         a completed run is drawn up to its failure: {}.",
+        if used.is_empty() {
+            "none".to_string()
+        } else {
+            used.join("; ")
+        }
+    );
+    if !missing.is_empty() {
+        caption.push_str(&format!(" No data: {}.", missing.join("; ")));
+    }
+    caption
 }
 
 /// The name a Track plot's reference line carries on the integrator axis (drawn in ink).

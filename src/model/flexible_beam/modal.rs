@@ -162,6 +162,167 @@ fn dot_at(a: &DVector<f64>, x: &DVector<f64>, xo: usize) -> f64 {
     a.iter().enumerate().map(|(i, ai)| ai * x[xo + i]).sum()
 }
 
+/// Refuses non-positive or non-finite beam data, a bad hub, no lateral shape, and a shape
+/// `Shape::validate` refuses.
+fn check_data(beam: &Beam, base: &Base, basis: &Basis) -> Result<(), String> {
+    for (name, x) in [
+        ("length", beam.l),
+        ("EA", beam.ea),
+        ("EI", beam.ei),
+        ("rhoA", beam.rho_a),
+    ] {
+        if !(x.is_finite() && x > 0.0) {
+            return Err(format!("{name} must be finite and positive, not {x}"));
+        }
+    }
+    if let Base::Free {
+        j_hub,
+        torque,
+        t_off,
+    } = *base
+        && !(j_hub.is_finite() && j_hub >= 0.0 && torque.is_finite() && !t_off.is_nan())
+    {
+        return Err(format!(
+            "the hub needs a finite inertia >= 0 and a finite torque, not {base:?}"
+        ));
+    }
+    if basis.lateral.is_empty() {
+        return Err("a modal model needs at least one lateral shape".into());
+    }
+    for s in basis.stretch.iter().chain(&basis.lateral) {
+        s.validate()?;
+    }
+    Ok(())
+}
+
+/// Refuses as many constraints as shape coordinates, a derivative above 3, and a constraint
+/// on the stretch without stretch shapes.
+fn check_constraints(constraints: &[Bc], np: usize, nq: usize) -> Result<(), String> {
+    if constraints.len() >= np + nq {
+        return Err(format!(
+            "{} constraints on {} shape coordinates leave no motion",
+            constraints.len(),
+            np + nq
+        ));
+    }
+    for bc in constraints {
+        if bc.derivative > 3 {
+            return Err(format!("{bc:?}: derivatives 0..=3 only"));
+        }
+        if bc.field == Field::Stretch && np == 0 {
+            return Err(format!("{bc:?}: there are no stretch shapes"));
+        }
+    }
+    Ok(())
+}
+
+/// The integrals over the beam of the module's notation (`Kg` 0 without stiffening).
+struct Integrals {
+    mpp: DMatrix<f64>,
+    kpp: DMatrix<f64>,
+    c: DMatrix<f64>,
+    mqq: DMatrix<f64>,
+    kqq: DMatrix<f64>,
+    kg: DMatrix<f64>,
+    /// `int phi' phi'^T`.
+    sqq: DMatrix<f64>,
+    ap: DVector<f64>,
+    aq: DVector<f64>,
+    i0: f64,
+}
+
+/// The matrices, vectors and `I0` by the composite Gauss-Legendre rule, summed point by point.
+fn integrals(beam: &Beam, basis: &Basis) -> Integrals {
+    let (np, nq) = (basis.stretch.len(), basis.lateral.len());
+    let l = beam.l;
+    let (mut mpp, mut kpp, mut c) = (
+        DMatrix::zeros(np, np),
+        DMatrix::zeros(np, np),
+        DMatrix::zeros(np, nq),
+    );
+    let (mut mqq, mut kqq, mut kg, mut sqq) = (
+        DMatrix::zeros(nq, nq),
+        DMatrix::zeros(nq, nq),
+        DMatrix::zeros(nq, nq),
+        DMatrix::zeros(nq, nq),
+    );
+    let (mut ap, mut aq) = (DVector::zeros(np), DVector::zeros(nq));
+    let mut i0 = 0.0;
+    let (mut psi, mut phi) = (vec![[0.0; 4]; np], vec![[0.0; 4]; nq]);
+    for (x, w) in composite_rule(l, N_SUB, N_PT) {
+        for (e, s) in psi.iter_mut().zip(&basis.stretch) {
+            *e = s.eval(x, l);
+        }
+        for (e, s) in phi.iter_mut().zip(&basis.lateral) {
+            *e = s.eval(x, l);
+        }
+        let wm = w * beam.rho_a;
+        i0 += wm * x * x;
+        for i in 0..np {
+            ap[i] += wm * x * psi[i][0];
+            for j in 0..np {
+                mpp[(i, j)] += wm * psi[i][0] * psi[j][0];
+                kpp[(i, j)] += w * beam.ea * psi[i][1] * psi[j][1];
+            }
+            for k in 0..nq {
+                c[(i, k)] += wm * psi[i][0] * phi[k][0];
+            }
+        }
+        for k in 0..nq {
+            aq[k] += wm * x * phi[k][0];
+            for j in 0..nq {
+                mqq[(k, j)] += wm * phi[k][0] * phi[j][0];
+                kqq[(k, j)] += w * beam.ei * phi[k][2] * phi[j][2];
+                kg[(k, j)] += wm * 0.5 * (l * l - x * x) * phi[k][1] * phi[j][1];
+                sqq[(k, j)] += w * phi[k][1] * phi[j][1];
+            }
+        }
+    }
+    if !basis.stiffening {
+        kg.fill(0.0);
+    }
+    Integrals {
+        mpp,
+        kpp,
+        c,
+        mqq,
+        kqq,
+        kg,
+        sqq,
+        ap,
+        aq,
+        i0,
+    }
+}
+
+/// Refuses linearly dependent stretch or lateral shapes (a mass block without a Cholesky
+/// factor).
+fn check_independent(mpp: &DMatrix<f64>, mqq: &DMatrix<f64>) -> Result<(), String> {
+    for (m, what) in [(mpp, "stretch"), (mqq, "lateral")] {
+        if m.nrows() > 0 && m.clone().cholesky().is_none() {
+            return Err(format!("the {what} shapes are linearly dependent"));
+        }
+    }
+    Ok(())
+}
+
+/// The constraint rows (`m x n`): each constraint's shape values at its end, in its field's
+/// columns.
+fn constraint_rows(basis: &Basis, l: f64, n: usize, off: usize, np: usize) -> DMatrix<f64> {
+    let mut rows = DMatrix::zeros(basis.constraints.len(), n);
+    for (r, bc) in basis.constraints.iter().enumerate() {
+        let x = if bc.at_tip { l } else { 0.0 };
+        let (shapes, start) = match bc.field {
+            Field::Stretch => (&basis.stretch, off),
+            Field::Lateral => (&basis.lateral, off + np),
+        };
+        for (j, s) in shapes.iter().enumerate() {
+            rows[(r, start + j)] = s.eval(x, l)[bc.derivative];
+        }
+    }
+    rows
+}
+
 impl Modal {
     /// The model of `beam` on `base` in `basis`; an error names bad data (non-positive or
     /// non-finite beam data or hub inertia, no lateral shape, a shape index out of range, a
@@ -188,117 +349,29 @@ impl Modal {
     /// assert_eq!(m.dim(), 5);
     /// ```
     pub fn new(beam: Beam, base: Base, basis: Basis) -> Result<Modal, String> {
-        for (name, x) in [
-            ("length", beam.l),
-            ("EA", beam.ea),
-            ("EI", beam.ei),
-            ("rhoA", beam.rho_a),
-        ] {
-            if !(x.is_finite() && x > 0.0) {
-                return Err(format!("{name} must be finite and positive, not {x}"));
-            }
-        }
-        if let Base::Free {
-            j_hub,
-            torque,
-            t_off,
-        } = base
-            && !(j_hub.is_finite() && j_hub >= 0.0 && torque.is_finite() && !t_off.is_nan())
-        {
-            return Err(format!(
-                "the hub needs a finite inertia >= 0 and a finite torque, not {base:?}"
-            ));
-        }
-        if basis.lateral.is_empty() {
-            return Err("a modal model needs at least one lateral shape".into());
-        }
-        for s in basis.stretch.iter().chain(&basis.lateral) {
-            s.validate()?;
-        }
+        check_data(&beam, &base, &basis)?;
         let (np, nq) = (basis.stretch.len(), basis.lateral.len());
         let off = usize::from(matches!(base, Base::Free { .. }));
         let n = off + np + nq;
-        if basis.constraints.len() >= np + nq {
-            return Err(format!(
-                "{} constraints on {} shape coordinates leave no motion",
-                basis.constraints.len(),
-                np + nq
-            ));
-        }
-        for bc in &basis.constraints {
-            if bc.derivative > 3 {
-                return Err(format!("{bc:?}: derivatives 0..=3 only"));
-            }
-            if bc.field == Field::Stretch && np == 0 {
-                return Err(format!("{bc:?}: there are no stretch shapes"));
-            }
-        }
+        check_constraints(&basis.constraints, np, nq)?;
         let l = beam.l;
-        let (mut mpp, mut kpp, mut c) = (
-            DMatrix::zeros(np, np),
-            DMatrix::zeros(np, np),
-            DMatrix::zeros(np, nq),
-        );
-        let (mut mqq, mut kqq, mut kg, mut sqq) = (
-            DMatrix::zeros(nq, nq),
-            DMatrix::zeros(nq, nq),
-            DMatrix::zeros(nq, nq),
-            DMatrix::zeros(nq, nq),
-        );
-        let (mut ap, mut aq) = (DVector::zeros(np), DVector::zeros(nq));
-        let mut i0 = 0.0;
-        let (mut psi, mut phi) = (vec![[0.0; 4]; np], vec![[0.0; 4]; nq]);
-        for (x, w) in composite_rule(l, N_SUB, N_PT) {
-            for (e, s) in psi.iter_mut().zip(&basis.stretch) {
-                *e = s.eval(x, l);
-            }
-            for (e, s) in phi.iter_mut().zip(&basis.lateral) {
-                *e = s.eval(x, l);
-            }
-            let wm = w * beam.rho_a;
-            i0 += wm * x * x;
-            for i in 0..np {
-                ap[i] += wm * x * psi[i][0];
-                for j in 0..np {
-                    mpp[(i, j)] += wm * psi[i][0] * psi[j][0];
-                    kpp[(i, j)] += w * beam.ea * psi[i][1] * psi[j][1];
-                }
-                for k in 0..nq {
-                    c[(i, k)] += wm * psi[i][0] * phi[k][0];
-                }
-            }
-            for k in 0..nq {
-                aq[k] += wm * x * phi[k][0];
-                for j in 0..nq {
-                    mqq[(k, j)] += wm * phi[k][0] * phi[j][0];
-                    kqq[(k, j)] += w * beam.ei * phi[k][2] * phi[j][2];
-                    kg[(k, j)] += wm * 0.5 * (l * l - x * x) * phi[k][1] * phi[j][1];
-                    sqq[(k, j)] += w * phi[k][1] * phi[j][1];
-                }
-            }
-        }
-        if !basis.stiffening {
-            kg.fill(0.0);
-        }
-        for (m, what) in [(&mpp, "stretch"), (&mqq, "lateral")] {
-            if m.nrows() > 0 && m.clone().cholesky().is_none() {
-                return Err(format!("the {what} shapes are linearly dependent"));
-            }
-        }
+        let Integrals {
+            mpp,
+            kpp,
+            c,
+            mqq,
+            kqq,
+            kg,
+            sqq,
+            ap,
+            aq,
+            i0,
+        } = integrals(&beam, &basis);
+        check_independent(&mpp, &mqq)?;
         let d = &mqq - &kg;
         let psi_tip = DVector::from_iterator(np, basis.stretch.iter().map(|s| s.eval(l, l)[0]));
         let phi_tip = DVector::from_iterator(nq, basis.lateral.iter().map(|s| s.eval(l, l)[0]));
-        let mut rows = DMatrix::zeros(basis.constraints.len(), n);
-        for (r, bc) in basis.constraints.iter().enumerate() {
-            let x = if bc.at_tip { l } else { 0.0 };
-            let (shapes, start) = match bc.field {
-                Field::Stretch => (&basis.stretch, off),
-                Field::Lateral => (&basis.lateral, off + np),
-            };
-            for (j, s) in shapes.iter().enumerate() {
-                rows[(r, start + j)] = s.eval(x, l)[bc.derivative];
-            }
-        }
+        let rows = constraint_rows(&basis, l, n, off, np);
         let rows_of = RowsOf {
             sqq: sqq.transpose(),
             mpp: mpp.transpose(),

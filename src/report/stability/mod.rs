@@ -328,6 +328,54 @@ pub fn section(
     footer: &str,
 ) -> Option<StabilitySection> {
     let s = src.summary;
+    let CaseRecords {
+        fits,
+        search,
+        long,
+        other,
+        other_fits,
+    } = case_records(s, name)?;
+    let text = section_text(&search, &fits, &long, &other, case);
+    let steps = step_tables(name, &search, case);
+    let ladder = split_figures(ladder_plots(name, &fits, &search, footer));
+    let (long_figs, long_sorted) = long_horizon_figures(name, &long, src.dir, footer, case);
+    Some(StabilitySection {
+        env_line: format!(
+            "stability.json: commit {} | {} | {} | {} build, {} threads",
+            s.git_commit, s.created_utc, s.env.rustc, s.env.profile, s.env.threads
+        ),
+        text,
+        steps,
+        ladder,
+        long_horizon: long_figs,
+        long_table: (!long_sorted.is_empty()).then(|| long_table(name, &long_sorted)),
+        singularity: split_figures(singularity_plots(name, &other, footer)),
+        sensitivity: split_figures(
+            sensitivity_plot(name, &other, src.dir, footer)
+                .into_iter()
+                .collect(),
+        ),
+        other: (!other.is_empty()).then(|| other_table(name, &other)),
+        other_fits: (!other_fits.is_empty()).then(|| other_fits_table(name, &other_fits)),
+    })
+}
+
+/// A case's records and fits, by the part of its section that shows them.
+struct CaseRecords<'a> {
+    /// Every fit of the case.
+    fits: Vec<&'a FitRecord>,
+    /// Step-search records (a largest stable step or tolerance).
+    search: Vec<&'a Record>,
+    /// Long-horizon records.
+    long: Vec<&'a Record>,
+    /// Every other record (singularity, sensitivity, `n/a`).
+    other: Vec<&'a Record>,
+    /// Fits neither of the stiffness ladder nor of a growth exponent.
+    other_fits: Vec<&'a FitRecord>,
+}
+
+/// The records and fits of case `name`, grouped; None when there are none.
+fn case_records<'a>(s: &'a Summary, name: &str) -> Option<CaseRecords<'a>> {
     let records: Vec<&Record> = s.records.iter().filter(|r| r.key.case == name).collect();
     let fits: Vec<&FitRecord> = s.fits.iter().filter(|f| f.key.case == name).collect();
     if records.is_empty() && fits.is_empty() {
@@ -349,36 +397,26 @@ pub fn section(
         .copied()
         .filter(|f| !is_ladder_fit(f) && !is_growth_fit(f))
         .collect();
+    Some(CaseRecords {
+        fits,
+        search,
+        long,
+        other,
+        other_fits,
+    })
+}
 
+/// The sentences on how to read each part the case has and what it shows.
+fn section_text(
+    search: &[&Record],
+    fits: &[&FitRecord],
+    long: &[&Record],
+    other: &[&Record],
+    case: Option<&Case>,
+) -> Vec<String> {
     let mut text = vec![];
     if !search.is_empty() {
-        let seam = search
-            .iter()
-            .any(|r| r.metrics.contains_key("first_period"));
-        text.push(if seam {
-            "Step search: per scene, the largest fixed step at which each variant stays \
-             stable (no typed failure such as the divergence bound, finite scores) over the \
-             horizon t_h (periods of the scene's first mode; probes dt = s / n with s the \
-             sample interval, from the cap s down, bisected to 5 %); adaptive variants and \
-             accuracy are not searched here."
-                .to_string()
-        } else {
-            "Step search: per scene, the largest step (or loosest tolerance) at which each \
-             variant stays stable, and stays accurate, over the horizon t_h (periods of the \
-             scene's fastest linearised mode; probes dt = t_h / n from the cap t_h / 20 down, \
-             bisected to 5 %)."
-                .to_string()
-        });
-        text.push(
-            "In the tables, 'what limits it' is the failure at the next coarser probe (hover \
-             for the full text); '(cap)' with 'bounded up to the cap' means the coarsest step \
-             tried passed: a lower bound, no limit was found."
-                .to_string(),
-        );
-        if search.iter().any(|r| r.key.integrator == "euler") {
-            text.push(EULER_NOTE.to_string());
-        }
-        text.extend(search_facts(&search, case));
+        push_step_search_text(&mut text, search, case);
     }
     if fits.iter().any(|f| is_ladder_fit(f)) {
         text.push(
@@ -404,35 +442,76 @@ pub fn section(
              chart and setting (plots below, numbers in the table of other records)."
                 .to_string(),
         );
-        text.extend(singularity_facts(&other));
+        text.extend(singularity_facts(other));
     }
     if other.iter().any(|r| is_sensitivity(r)) {
-        let facts: Vec<String> = other
-            .iter()
-            .filter(|r| is_sensitivity(r))
-            .filter_map(|r| {
-                let g = r.metrics.get("sensitivity_growth_max").copied().flatten()?;
-                let h = r.metrics.get("predictable_horizon").copied().flatten()?;
-                Some(format!(
-                    "{} {}x (predictable to t = {} s)",
-                    r.key.scene,
-                    plain(g),
-                    plain(h)
-                ))
-            })
-            .collect();
-        text.push(format!(
-            "Sensitivity: the largest growth of a 1e-9 initial perturbation over each scene's \
-             horizon: {}.",
-            if facts.is_empty() {
-                "not computed".to_string()
-            } else {
-                facts.join(", ")
-            }
-        ));
+        text.push(sensitivity_text(other));
     }
+    text
+}
 
-    let steps = ordered_scenes(search.iter().map(|r| r.key.scene.as_str()), case)
+/// Appends the step search's sentences: how it searched (the seam's search or a family's own),
+/// how to read its tables, the Euler note when explicit Euler ran, and its facts.
+fn push_step_search_text(text: &mut Vec<String>, search: &[&Record], case: Option<&Case>) {
+    let seam = search
+        .iter()
+        .any(|r| r.metrics.contains_key("first_period"));
+    text.push(if seam {
+        "Step search: per scene, the largest fixed step at which each variant stays \
+         stable (no typed failure such as the divergence bound, finite scores) over the \
+         horizon t_h (periods of the scene's first mode; probes dt = s / n with s the \
+         sample interval, from the cap s down, bisected to 5 %); adaptive variants and \
+         accuracy are not searched here."
+            .to_string()
+    } else {
+        "Step search: per scene, the largest step (or loosest tolerance) at which each \
+         variant stays stable, and stays accurate, over the horizon t_h (periods of the \
+         scene's fastest linearised mode; probes dt = t_h / n from the cap t_h / 20 down, \
+         bisected to 5 %)."
+            .to_string()
+    });
+    text.push(
+        "In the tables, 'what limits it' is the failure at the next coarser probe (hover \
+         for the full text); '(cap)' with 'bounded up to the cap' means the coarsest step \
+         tried passed: a lower bound, no limit was found."
+            .to_string(),
+    );
+    if search.iter().any(|r| r.key.integrator == "euler") {
+        text.push(EULER_NOTE.to_string());
+    }
+    text.extend(search_facts(search, case));
+}
+
+/// The sensitivity sentence: each scene's largest growth and predictable horizon.
+fn sensitivity_text(other: &[&Record]) -> String {
+    let facts: Vec<String> = other
+        .iter()
+        .filter(|r| is_sensitivity(r))
+        .filter_map(|r| {
+            let g = r.metrics.get("sensitivity_growth_max").copied().flatten()?;
+            let h = r.metrics.get("predictable_horizon").copied().flatten()?;
+            Some(format!(
+                "{} {}x (predictable to t = {} s)",
+                r.key.scene,
+                plain(g),
+                plain(h)
+            ))
+        })
+        .collect();
+    format!(
+        "Sensitivity: the largest growth of a 1e-9 initial perturbation over each scene's \
+         horizon: {}.",
+        if facts.is_empty() {
+            "not computed".to_string()
+        } else {
+            facts.join(", ")
+        }
+    )
+}
+
+/// One step-search table per scene, the case file's scenes first and unfolded.
+fn step_tables(name: &str, search: &[&Record], case: Option<&Case>) -> Vec<StepTable> {
+    ordered_scenes(search.iter().map(|r| r.key.scene.as_str()), case)
         .into_iter()
         .map(|scene| {
             let rs: Vec<&Record> = search
@@ -445,17 +524,27 @@ pub fn section(
                 table: step_table(name, &scene, &rs),
             }
         })
-        .collect();
-    // Plots whose lines follow the run's variants are cut to at most eight lines each.
-    let small = |ps: Vec<Plot>| -> Vec<Figure> {
-        ps.into_iter()
-            .flat_map(super::select::split_crowded)
-            .map(|p| super::figure(&p))
-            .collect()
-    };
-    let ladder = small(ladder_plots(name, &fits, &search, footer));
+        .collect()
+}
+
+/// The figures of plots whose lines follow the run's variants, cut to at most eight lines each.
+fn split_figures(ps: Vec<Plot>) -> Vec<Figure> {
+    ps.into_iter()
+        .flat_map(super::select::split_crowded)
+        .map(|p| super::figure(&p))
+        .collect()
+}
+
+/// The long-horizon figures, scene by scene, and the long-horizon records in variant order.
+fn long_horizon_figures<'a>(
+    name: &str,
+    long: &[&'a Record],
+    dir: &Path,
+    footer: &str,
+    case: Option<&Case>,
+) -> (Vec<Figure>, Vec<&'a Record>) {
     let mut long_figs = vec![];
-    let mut long_sorted = long.clone();
+    let mut long_sorted = long.to_vec();
     long_sorted.sort_by_key(|r| VariantKey::of(&r.key));
     for scene in ordered_scenes(long.iter().map(|r| r.key.scene.as_str()), case) {
         let rs: Vec<&Record> = long_sorted
@@ -464,30 +553,12 @@ pub fn section(
             .filter(|r| r.key.scene == scene)
             .collect();
         long_figs.extend(
-            long_plots(name, &scene, &rs, src.dir, footer)
+            long_plots(name, &scene, &rs, dir, footer)
                 .iter()
                 .map(super::figure),
         );
     }
-    Some(StabilitySection {
-        env_line: format!(
-            "stability.json: commit {} | {} | {} | {} build, {} threads",
-            s.git_commit, s.created_utc, s.env.rustc, s.env.profile, s.env.threads
-        ),
-        text,
-        steps,
-        ladder,
-        long_horizon: long_figs,
-        long_table: (!long_sorted.is_empty()).then(|| long_table(name, &long_sorted)),
-        singularity: small(singularity_plots(name, &other, footer)),
-        sensitivity: small(
-            sensitivity_plot(name, &other, src.dir, footer)
-                .into_iter()
-                .collect(),
-        ),
-        other: (!other.is_empty()).then(|| other_table(name, &other)),
-        other_fits: (!other_fits.is_empty()).then(|| other_fits_table(name, &other_fits)),
-    })
+    (long_figs, long_sorted)
 }
 
 #[cfg(test)]

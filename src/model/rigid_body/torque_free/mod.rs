@@ -99,128 +99,18 @@ impl TorqueFreeExact {
         omega0_body: Vector3<f64>,
         r0: Matrix3<f64>,
     ) -> Result<Self, String> {
-        if !inertia_diag.iter().all(|v| v.is_finite() && *v > 0.0) {
-            return Err(format!(
-                "TorqueFreeExact: moments {inertia_diag:?} must be positive"
-            ));
-        }
-        if !omega0_body.iter().all(|v| v.is_finite()) {
-            return Err(format!(
-                "TorqueFreeExact: omega0 {omega0_body:?} is not finite"
-            ));
-        }
-        let orth = (r0.transpose() * r0 - Matrix3::identity()).abs().max();
-        if !(orth <= 1e-9 && r0.determinant() > 0.0) {
-            return Err(format!(
-                "TorqueFreeExact: R0 is not a rotation (|R^T R - I| = {orth})"
-            ));
-        }
+        check_inputs(&inertia_diag, &omega0_body, &r0)?;
         let q0 = so3::quat_from_matrix(&r0);
         let (jd, w) = (inertia_diag, omega0_body);
 
-        // Steady spin: every non-zero component of omega0 on axes of one and the same moment.
-        let mut moment = None;
-        let mut steady = true;
-        for i in 0..3 {
-            if w[i] != 0.0 {
-                match moment {
-                    None => moment = Some(jd[i]),
-                    Some(mi) => steady &= mi == jd[i],
-                }
-            }
-        }
-        if steady {
+        if is_steady_spin(&jd, &w) {
             return Ok(TorqueFreeExact {
                 motion: Motion::Steady { q0, omega0: w },
             });
         }
 
-        let mut idx = [0usize, 1, 2];
-        idx.sort_by(|&i, &k| jd[i].total_cmp(&jd[k]));
-        let ib = idx[1];
-        let sum = |pivot: f64, sign: f64| -> f64 {
-            (0..3)
-                .map(|i| jd[i] * (sign * (jd[i] - pivot)) * w[i] * w[i])
-                .sum()
-        };
-        let s_sep = sum(jd[ib], 1.0);
-        if s_sep == 0.0 {
-            return Err(format!(
-                "TorqueFreeExact: omega0 {w:?} lies exactly on the separatrix of J = {jd:?} \
-                 (|L|^2 = 2 T J_2): the heteroclinic motion is not handled"
-            ));
-        }
-        let (ia, ic) = if s_sep > 0.0 {
-            (idx[0], idx[2])
-        } else {
-            (idx[2], idx[0])
-        };
-        // Row a carries the sign that makes (a, b, c) right-handed.
-        let cyclic = ib == (ia + 1) % 3;
-        let mut perm = Matrix3::zeros();
-        perm[(0, ia)] = if cyclic { 1.0 } else { -1.0 };
-        perm[(1, ib)] = 1.0;
-        perm[(2, ic)] = 1.0;
-        let q_perm = so3::quat_from_matrix(&perm);
-        let (ja, jb, jc) = (jd[ia], jd[ib], jd[ic]);
-        let inertia = Vector3::new(ja, jb, jc);
-        let wc = perm * w;
-
-        let a_int = sum(jc, -1.0); // 2 T J_c - |L|^2
-        let c_int = sum(ja, 1.0); // |L|^2 - 2 T J_a
-        let al_a = (a_int / (ja * (jc - ja))).sqrt();
-        let al_b = (a_int / (jb * (jc - jb))).sqrt();
-        let al_c = (c_int / (jc * (jc - ja))).sqrt();
-        let lambda = ((jc - jb) * c_int / (ja * jb * jc)).sqrt();
-        let m = (jb - ja) * a_int / ((jc - jb) * c_int);
-        let m1 = (jc - ja) * s_sep / ((jc - jb) * c_int);
-        let jac = if m1 <= 0.5 {
-            Jacobi::from_m1(m1)?
-        } else {
-            Jacobi::from_m(m)?
-        };
-        let s_c = wc.z.signum();
-        let s_b = (jc - ja).signum() * s_c;
-        let amp = Vector3::new(al_a, s_b * al_b, s_c * al_c);
-
-        // Initial phase from (cn, sn)(tau0).
-        let (x, y) = (wc.x / al_a, wc.y / amp.y);
-        let r = x.hypot(y);
-        let (sn0, cn0) = (y / r, x / r);
-        let f = incomplete_f_sc(sn0, cn0.abs(), jac.m1())?;
-        let tau0 = if cn0 >= 0.0 {
-            f
-        } else {
-            let sgn = if sn0 < 0.0 { -1.0 } else { 1.0 };
-            sgn * 2.0 * jac.k() - f
-        };
-
-        let l_norm = inertia.component_mul(&wc).norm();
-        let nu = jc * (jb - ja) / (ja * (jc - jb));
-        let mut e = Elliptic {
-            perm,
-            q_perm,
-            inertia,
-            amp,
-            lambda,
-            tau0,
-            jac,
-            prec_rate: l_norm / jc,
-            prec_coef: l_norm * (jc - ja) / (jc * ja * lambda),
-            nu,
-            w_period: 0.0,
-            w0: 0.0,
-            q_left: UnitQuaternion::identity(),
-        };
-        e.w_period = 2.0 * incomplete_pi_sc(1.0, 0.0, jac.m1(), -nu)?;
-        let (omega_start, w0) = e.state(tau0);
-        if !(w0.is_finite() && e.w_period.is_finite() && lambda.is_finite() && lambda > 0.0) {
-            return Err(format!(
-                "TorqueFreeExact: degenerate elliptic data for J = {jd:?}, omega0 = {w:?}"
-            ));
-        }
-        e.w0 = w0;
-        e.q_left = q0 * q_perm.inverse() * e.align(&omega_start).inverse();
+        let frame = Frame::of(&jd, &w)?;
+        let e = elliptic_motion(q0, &jd, &w, frame)?;
         Ok(TorqueFreeExact {
             motion: Motion::Elliptic(Box::new(e)),
         })
@@ -243,4 +133,196 @@ impl TorqueFreeExact {
             }
         }
     }
+}
+
+/// Refuses non-positive or non-finite moments, a non-finite `omega0` and an `R0` that is not
+/// a rotation.
+fn check_inputs(
+    inertia_diag: &Vector3<f64>,
+    omega0_body: &Vector3<f64>,
+    r0: &Matrix3<f64>,
+) -> Result<(), String> {
+    if !inertia_diag.iter().all(|v| v.is_finite() && *v > 0.0) {
+        return Err(format!(
+            "TorqueFreeExact: moments {inertia_diag:?} must be positive"
+        ));
+    }
+    if !omega0_body.iter().all(|v| v.is_finite()) {
+        return Err(format!(
+            "TorqueFreeExact: omega0 {omega0_body:?} is not finite"
+        ));
+    }
+    let orth = (r0.transpose() * r0 - Matrix3::identity()).abs().max();
+    if !(orth <= 1e-9 && r0.determinant() > 0.0) {
+        return Err(format!(
+            "TorqueFreeExact: R0 is not a rotation (|R^T R - I| = {orth})"
+        ));
+    }
+    Ok(())
+}
+
+/// Steady spin: every non-zero component of omega0 on axes of one and the same moment.
+fn is_steady_spin(jd: &Vector3<f64>, w: &Vector3<f64>) -> bool {
+    let mut moment = None;
+    let mut steady = true;
+    for i in 0..3 {
+        if w[i] != 0.0 {
+            match moment {
+                None => moment = Some(jd[i]),
+                Some(mi) => steady &= mi == jd[i],
+            }
+        }
+    }
+    steady
+}
+
+/// `sum_i J_i (sign (J_i - pivot)) omega_i^2` (`S`, `A` and `C` of the module's notation).
+fn signed_sum(jd: &Vector3<f64>, w: &Vector3<f64>, pivot: f64, sign: f64) -> f64 {
+    (0..3)
+        .map(|i| jd[i] * (sign * (jd[i] - pivot)) * w[i] * w[i])
+        .sum()
+}
+
+/// The axes `(a, b, c)` of the module's notation, made right-handed by `perm`.
+struct Frame {
+    /// `S = |L|^2 - 2 T J_b`.
+    s_sep: f64,
+    /// The signed permutation `P` (`omega_can = P omega`) and its quaternion.
+    perm: Matrix3<f64>,
+    q_perm: UnitQuaternion<f64>,
+    ja: f64,
+    jb: f64,
+    jc: f64,
+    /// `(J_a, J_b, J_c)`.
+    inertia: Vector3<f64>,
+    /// `P omega0`.
+    wc: Vector3<f64>,
+}
+
+impl Frame {
+    /// The frame of `(J, omega0)` from the sign of `S`; an error on the separatrix (`S = 0`).
+    fn of(jd: &Vector3<f64>, w: &Vector3<f64>) -> Result<Frame, String> {
+        let mut idx = [0usize, 1, 2];
+        idx.sort_by(|&i, &k| jd[i].total_cmp(&jd[k]));
+        let ib = idx[1];
+        let s_sep = signed_sum(jd, w, jd[ib], 1.0);
+        if s_sep == 0.0 {
+            return Err(format!(
+                "TorqueFreeExact: omega0 {w:?} lies exactly on the separatrix of J = {jd:?} \
+                 (|L|^2 = 2 T J_2): the heteroclinic motion is not handled"
+            ));
+        }
+        let (ia, ic) = if s_sep > 0.0 {
+            (idx[0], idx[2])
+        } else {
+            (idx[2], idx[0])
+        };
+        // Row a carries the sign that makes (a, b, c) right-handed.
+        let cyclic = ib == (ia + 1) % 3;
+        let mut perm = Matrix3::zeros();
+        perm[(0, ia)] = if cyclic { 1.0 } else { -1.0 };
+        perm[(1, ib)] = 1.0;
+        perm[(2, ic)] = 1.0;
+        let q_perm = so3::quat_from_matrix(&perm);
+        let (ja, jb, jc) = (jd[ia], jd[ib], jd[ic]);
+        let inertia = Vector3::new(ja, jb, jc);
+        let wc = perm * w;
+        Ok(Frame {
+            s_sep,
+            perm,
+            q_perm,
+            ja,
+            jb,
+            jc,
+            inertia,
+            wc,
+        })
+    }
+}
+
+/// The elliptic solution in `frame`: amplitudes, rate, parameter, initial phase and the
+/// precession's constants, aligned so that `R(0) = R0`; an error on degenerate data.
+fn elliptic_motion(
+    q0: UnitQuaternion<f64>,
+    jd: &Vector3<f64>,
+    w: &Vector3<f64>,
+    frame: Frame,
+) -> Result<Elliptic, String> {
+    let Frame {
+        s_sep,
+        perm,
+        q_perm,
+        ja,
+        jb,
+        jc,
+        inertia,
+        wc,
+    } = frame;
+    let a_int = signed_sum(jd, w, jc, -1.0); // 2 T J_c - |L|^2
+    let c_int = signed_sum(jd, w, ja, 1.0); // |L|^2 - 2 T J_a
+    let al_a = (a_int / (ja * (jc - ja))).sqrt();
+    let al_b = (a_int / (jb * (jc - jb))).sqrt();
+    let al_c = (c_int / (jc * (jc - ja))).sqrt();
+    let lambda = ((jc - jb) * c_int / (ja * jb * jc)).sqrt();
+    let m = (jb - ja) * a_int / ((jc - jb) * c_int);
+    let m1 = (jc - ja) * s_sep / ((jc - jb) * c_int);
+    let jac = if m1 <= 0.5 {
+        Jacobi::from_m1(m1)?
+    } else {
+        Jacobi::from_m(m)?
+    };
+    let s_c = wc.z.signum();
+    let s_b = (jc - ja).signum() * s_c;
+    let amp = Vector3::new(al_a, s_b * al_b, s_c * al_c);
+
+    let tau0 = initial_phase(&wc, al_a, &amp, &jac)?;
+
+    let l_norm = inertia.component_mul(&wc).norm();
+    let nu = jc * (jb - ja) / (ja * (jc - jb));
+    let mut e = Elliptic {
+        perm,
+        q_perm,
+        inertia,
+        amp,
+        lambda,
+        tau0,
+        jac,
+        prec_rate: l_norm / jc,
+        prec_coef: l_norm * (jc - ja) / (jc * ja * lambda),
+        nu,
+        w_period: 0.0,
+        w0: 0.0,
+        q_left: UnitQuaternion::identity(),
+    };
+    e.w_period = 2.0 * incomplete_pi_sc(1.0, 0.0, jac.m1(), -nu)?;
+    let (omega_start, w0) = e.state(tau0);
+    if !(w0.is_finite() && e.w_period.is_finite() && lambda.is_finite() && lambda > 0.0) {
+        return Err(format!(
+            "TorqueFreeExact: degenerate elliptic data for J = {jd:?}, omega0 = {w:?}"
+        ));
+    }
+    e.w0 = w0;
+    e.q_left = q0 * q_perm.inverse() * e.align(&omega_start).inverse();
+    Ok(e)
+}
+
+/// Initial phase from (cn, sn)(tau0): `F(phi0|m)`, or `2K sgn(sn) - F(pi - phi0|m)` if
+/// `cn < 0`.
+fn initial_phase(
+    wc: &Vector3<f64>,
+    al_a: f64,
+    amp: &Vector3<f64>,
+    jac: &Jacobi,
+) -> Result<f64, String> {
+    let (x, y) = (wc.x / al_a, wc.y / amp.y);
+    let r = x.hypot(y);
+    let (sn0, cn0) = (y / r, x / r);
+    let f = incomplete_f_sc(sn0, cn0.abs(), jac.m1())?;
+    let tau0 = if cn0 >= 0.0 {
+        f
+    } else {
+        let sgn = if sn0 < 0.0 { -1.0 } else { 1.0 };
+        sgn * 2.0 * jac.k() - f
+    };
+    Ok(tau0)
 }
