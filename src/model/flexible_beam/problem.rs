@@ -22,7 +22,7 @@ use super::reference::BeamReference;
 use crate::case::{Case, CaseError, Scene};
 use crate::integrate::{Limits, MethodInfo};
 use crate::metrics::Scores;
-use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
+use crate::problem::{Columns, Outcome, Problem, SceneHeader, Stepping, Variant, Want};
 use crate::reference;
 use crate::run::{Grid, Observe, RunOutput};
 use crate::case::Ladders;
@@ -47,11 +47,7 @@ impl BeamSetup {
 /// A flexible-beam scene with its reference (once attached).
 #[derive(Debug, Clone)]
 pub struct BeamProblem {
-    case: String,
-    scene: String,
-    inputs_sha256: String,
-    settings_sha256: String,
-    primary_metric: String,
+    header: SceneHeader,
     pub(super) setup: BeamSetup,
     ladders: Ladders,
     quick: Ladders,
@@ -69,11 +65,7 @@ impl BeamProblem {
             });
         };
         Ok(BeamProblem {
-            case: case.name.clone(),
-            scene: scene.name.clone(),
-            inputs_sha256: crate::case::inputs_sha256(case, scene),
-            settings_sha256: scene.settings_sha256.clone(),
-            primary_metric: case.primary_metric.clone(),
+            header: SceneHeader::new(&FAMILY, case, scene),
             setup: BeamSetup {
                 scene: s.clone(),
                 numerics: *n,
@@ -172,7 +164,7 @@ impl BeamProblem {
             ),
             Err(why) => s.null("tip_time_error_max", why.clone()),
         }
-        if self.primary_metric == "tip_time_error_max" {
+        if self.header.primary_metric == "tip_time_error_max" {
             primary_error = time_error.ok();
         }
         if let Some((r, _)) = &self.reference {
@@ -211,7 +203,7 @@ impl BeamProblem {
                 if free {
                     s.set(names[1], rate.iter().copied().fold(0.0, f64::max));
                 }
-                match self.primary_metric.as_str() {
+                match self.header.primary_metric.as_str() {
                     "tip_deflection_error_max" => primary_error = Some(tip),
                     "hub_rate_error_max" if free => primary_error = Some(rate),
                     _ => {}
@@ -244,7 +236,7 @@ impl BeamProblem {
             constraint: out.scored().map(|x| x.residual).collect(),
             conditioning: out.scored().map(|x| x.conditioning).collect(),
             primary_error,
-            primary_metric: self.primary_metric.clone(),
+            primary_metric: self.header.primary_metric.clone(),
             tracks,
         };
         (s, series)
@@ -311,27 +303,17 @@ impl BeamProblem {
 }
 
 impl Problem for BeamProblem {
-    fn family(&self) -> &'static Family {
-        &FAMILY
+    fn header(&self) -> &SceneHeader {
+        &self.header
     }
-    fn case(&self) -> &str {
-        &self.case
-    }
-    fn scene(&self) -> &str {
-        &self.scene
-    }
-    fn inputs_sha256(&self) -> &str {
-        &self.inputs_sha256
-    }
-    fn settings_sha256(&self) -> &str {
-        &self.settings_sha256
-    }
-    fn primary_metric(&self) -> &str {
-        &self.primary_metric
+    fn header_mut(&mut self) -> &mut SceneHeader {
+        &mut self.header
     }
     fn t_end(&self) -> f64 {
         self.setup.grid.t_end
     }
+    // The grid is the run setup's, not the header's (the runs step on it); the attached
+    // reference's times are the old grid's: dropped.
     fn set_t_end(&mut self, t_end: f64) {
         self.setup.grid.t_end = t_end;
         self.reference = None;
@@ -349,12 +331,13 @@ impl Problem for BeamProblem {
         None
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
+        let h = &self.header;
         let (r, sha): (BeamReference, String) =
-            reference::load_as(root, &self.case, &self.scene, &self.inputs_sha256)
+            reference::load_as(root, &h.case, &h.scene, &h.inputs_sha256)
                 .map_err(|e| e.to_string())?;
         let g = &self.setup.grid;
         reference::check_grid(&r.t, g.t_end, g.score_every).map_err(|m| {
-            reference::grid_error(root, &self.case, &self.scene, m).to_string()
+            reference::grid_error(root, &h.case, &h.scene, m).to_string()
         })?;
         self.reference = Some((r, sha));
         Ok(())
