@@ -15,32 +15,32 @@
 //! The scene's grid (`t_end`, `score_every`, `sample_every`) is not here: it is part of what a
 //! family's run functions read (its setup's `run::Grid`), and one copy of it, in the setup,
 //! is the one the steps are taken on. `Problem::t_end` and its kin read it there.
-//!
-//! # Example
-//!
-//! ```
-//! use mbdbench::problem::SceneHeader;
-//!
-//! let cases = mbdbench::catalogue::embedded().unwrap();
-//! let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
-//! let s = c.scene("two_angles").unwrap();
-//! let family = mbdbench::catalogue::family_of(c);
-//! let h = SceneHeader::new(family, c, s);
-//! assert_eq!((h.case.as_str(), h.scene.as_str()), ("nine_spring", "two_angles"));
-//! assert_eq!(h.inputs_sha256, mbdbench::case::inputs_sha256(c, s));
-//! assert!(family.has_metric(&h.primary_metric));
-//!
-//! // A compiled scene's getters read its header.
-//! let mut p = (family.compile)(c, s).unwrap();
-//! assert_eq!(p.header().inputs_sha256, h.inputs_sha256);
-//! assert!(std::ptr::eq(p.family(), family));
-//! p.header_mut().scene = "renamed".into();
-//! assert_eq!(p.scene(), "renamed");
-//! ```
 use super::Family;
 use crate::case::{Case, Scene};
 
 /// What names one compiled scene and stamps its records (the module's invariants hold).
+///
+/// # Example
+///
+/// ```
+/// use mbdbench::problem::SceneHeader;
+///
+/// let cases = mbdbench::catalogue::embedded().unwrap();
+/// let c = cases.iter().find(|c| c.name == "nine_spring").unwrap();
+/// let s = c.scene("two_angles").unwrap();
+/// let family = mbdbench::catalogue::family_of(c);
+/// let h = SceneHeader::new(family, c, s);
+/// assert_eq!((h.case.as_str(), h.scene.as_str()), ("nine_spring", "two_angles"));
+/// assert_eq!(h.inputs_sha256, mbdbench::case::inputs_sha256(c, s));
+/// assert!(family.has_metric(&h.primary_metric));
+///
+/// // A compiled scene's getters read its header.
+/// let mut p = (family.compile)(c, s).unwrap();
+/// assert_eq!(p.header().inputs_sha256, h.inputs_sha256);
+/// assert!(std::ptr::eq(p.family(), family));
+/// p.header_mut().scene = "renamed".into();
+/// assert_eq!(p.scene(), "renamed");
+/// ```
 #[derive(Debug, Clone)]
 pub struct SceneHeader {
     /// The family the scene is compiled by.
