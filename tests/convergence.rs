@@ -146,7 +146,7 @@ fn orders_on_free_body_gni() {
         &mbdbench::cli::default_references(),
         "free_body",
         "gni",
-        &plan.inputs_sha256,
+        &plan.header.inputs_sha256,
     )
     .unwrap();
     let floor = 100.0

@@ -35,7 +35,7 @@ fn quick_summary_is_recognised() {
     let plans = crate::model::rigid_body::plan::plans(&cases, &[], &[]).unwrap();
     let p = plans
         .iter()
-        .find(|p| p.case == "nine_spring" && p.scene == "two_angles")
+        .find(|p| p.header.case == "nine_spring" && p.header.scene == "two_angles")
         .unwrap();
     let mut s = passing(&nine());
     s.records.truncate(1);

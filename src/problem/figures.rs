@@ -4,7 +4,8 @@
 //! group of parameterizations the narrative contrasts with the others (the rigid body's Euler
 //! charts, with their singular sets). The report composes these declarations and names no
 //! chart or integrator itself; a family without a declaration of some kind simply gets no plot
-//! of that kind.
+//! of that kind. A family's declaration starts from [`Figures::NONE`] (no plots) for every
+//! field it does not set.
 //!
 //! The kinds are today's four (work-precision against wall time and RHS evaluations,
 //! convergence over the fixed-step ladder, quantities over time (energy and constraint drift,
@@ -225,6 +226,27 @@ pub struct Figures {
     /// looks the same in every family); a name no family declares (a method registered at
     /// run time) gets a colour derived from its name (`report::style::colour`).
     pub colours: &'static [(&'static str, [u8; 3])],
+}
+
+impl Figures {
+    /// No plots: every list empty, no chart group, no physical view, failed runs left out,
+    /// `t` in seconds, no colours of the family's own. A family declares the fields it uses
+    /// and takes the rest from here (`..Figures::NONE`), so a new optional field is added
+    /// here once, with the value that changes no family's report.
+    pub const NONE: Figures = Figures {
+        key_text: "",
+        work_precision: &[],
+        convergence: &[],
+        timeseries: &[],
+        across_scenes: &[],
+        chart_group: None,
+        param_groups: &[],
+        line_styles: "",
+        draw_failed: false,
+        physical: None,
+        t_axis: seconds,
+        colours: &[],
+    };
 }
 
 /// `t` is time in seconds: `("t (s)", "step dt (s)")`.

@@ -8,7 +8,9 @@
 //! variants with the reasons every other combination is `n/a`. One scene of a case compiles
 //! into a [`Problem`], the object-safe trait through which the suite, the CLI and the gate
 //! run it: `run` is called once per run and dispatches, inside the family, to the same
-//! monomorphised hot loop as a direct call (no dynamic dispatch per step).
+//! monomorphised hot loop as a direct call (no dynamic dispatch per step). What names the
+//! scene and stamps its records (family, case, scene, hashes, primary metric) is one
+//! [`SceneHeader`] (`header.rs`) that the problem stores and the trait's getters read.
 //!
 //! Everything outside a family's folder reads the family's names from here; the variant
 //! matrix of [`matrix`] replaces hand-written loops over the three axes.
@@ -39,10 +41,12 @@ use crate::metrics::Scores;
 use crate::summary::Series;
 
 pub mod figures;
+pub mod header;
 pub mod matrix;
 pub mod reference_variant;
 
 pub use crate::run::Stepping;
+pub use header::SceneHeader;
 pub use matrix::{Cell, Entry, matrix};
 pub use reference_variant::ReferenceVariant;
 
@@ -251,19 +255,41 @@ pub struct Outcome {
 }
 
 /// One compiled scene of a case, ready to run any of its family's variants.
+///
+/// A family stores the scene's [`SceneHeader`] and gives it out through `header` and
+/// `header_mut`; the getters of the header's fields (`family` to `primary_metric`) are
+/// provided and read it. The grid's getters and `set_t_end` are the family's: the grid is
+/// part of its run setup, and a new horizon also invalidates what the family attached.
 pub trait Problem: Send + Sync {
-    fn family(&self) -> &'static Family;
-    fn case(&self) -> &str;
-    fn scene(&self) -> &str;
+    /// The scene's header: its family, names, hashes and primary metric.
+    fn header(&self) -> &SceneHeader;
+    /// The header to edit (it labels the records; no run reads it).
+    fn header_mut(&mut self) -> &mut SceneHeader;
+    fn family(&self) -> &'static Family {
+        self.header().family
+    }
+    fn case(&self) -> &str {
+        &self.header().case
+    }
+    fn scene(&self) -> &str {
+        &self.header().scene
+    }
     /// The SHA-256 of the scene's physics and its reference's numerical settings
     /// (cases/README.md, "Physics hash").
-    fn inputs_sha256(&self) -> &str;
+    fn inputs_sha256(&self) -> &str {
+        &self.header().inputs_sha256
+    }
     /// The SHA-256 of every other case-file key that can change a result (`case::hash`):
     /// the scene's `Scene::settings_sha256`, stamped on every record.
-    fn settings_sha256(&self) -> &str;
+    fn settings_sha256(&self) -> &str {
+        &self.header().settings_sha256
+    }
     /// The case's primary error metric.
-    fn primary_metric(&self) -> &str;
-    /// The horizon (s, or the load parameter's end for a static scene).
+    fn primary_metric(&self) -> &str {
+        &self.header().primary_metric
+    }
+    /// The horizon (s, or the load parameter's end for a static scene): the `t_end` of the
+    /// grid the family's runs step on.
     fn t_end(&self) -> f64;
     /// Replaces the horizon (`--t-end`); errors against references are then absent.
     fn set_t_end(&mut self, t_end: f64);

@@ -555,7 +555,7 @@ proptest! {
                     }
                 };
                 let Some(value) = value else { continue };
-                run_checked(v, &setup, value, plan.energy_scale, &plan.primary_metric)
+                run_checked(v, &setup, value, plan.energy_scale, &plan.header.primary_metric)
                     .map_err(TestCaseError::fail)?;
             }
         }

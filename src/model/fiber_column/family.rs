@@ -121,11 +121,7 @@ const FIGURES: Figures = Figures {
         ),
     ],
     across_scenes: &[(SO3_BY_FORMULATION, Measure::Primary)],
-    chart_group: None,
-    param_groups: &[],
     line_styles: "every line solid (one formulation per panel)",
-    draw_failed: false,
-    physical: None,
     t_axis,
     // newmark, hht and gen_alpha keep the beam's colours.
     colours: &[
@@ -135,6 +131,7 @@ const FIGURES: Figures = Figures {
         ("newton_disp_krylov", [220, 40, 40]), // red
         ("midpoint", [60, 160, 60]),           // green
     ],
+    ..Figures::NONE
 };
 
 const fn metric(name: &'static str, unit: &'static str, reference_error: bool) -> Metric {

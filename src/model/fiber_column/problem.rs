@@ -27,7 +27,7 @@ use super::shooting::shooting_tip;
 use crate::case::{Case, CaseError, Scene};
 use crate::integrate::MethodInfo;
 use crate::metrics::Scores;
-use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
+use crate::problem::{Columns, Outcome, Problem, SceneHeader, Stepping, Variant, Want};
 use crate::reference;
 use crate::run::Grid;
 use crate::case::Ladders;
@@ -43,13 +43,9 @@ enum Attached {
 /// A fiber-column scene with its reference (once attached).
 #[derive(Debug, Clone)]
 pub struct FiberProblem {
-    case: String,
-    scene: String,
+    header: SceneHeader,
     /// The scene's place in its case file (`scene[i]` in case keys).
     scene_index: usize,
-    inputs_sha256: String,
-    settings_sha256: String,
-    primary_metric: String,
     energy_scale: f64,
     setup: ColumnSetup,
     ladders: Ladders,
@@ -82,12 +78,8 @@ impl FiberProblem {
             });
         };
         Ok(FiberProblem {
-            case: case.name.clone(),
-            scene: scene.name.clone(),
+            header: SceneHeader::new(&FAMILY, case, scene),
             scene_index: scene.index,
-            inputs_sha256: crate::case::inputs_sha256(case, scene),
-            settings_sha256: scene.settings_sha256.clone(),
-            primary_metric: case.primary_metric.clone(),
             energy_scale: case.energy_scale,
             setup: ColumnSetup {
                 case: c.clone(),
@@ -143,7 +135,7 @@ impl FiberProblem {
             let at = (self.scene_index, g.t_end);
             opensees_model::check(&s.case, &s.scene, at.0, at.1, model, settings)
         };
-        opensees::load_external(root, &self.scene, g.t_end, g.score_every, &same_model)
+        opensees::load_external(root, &self.header.scene, g.t_end, g.score_every, &same_model)
     }
 
     /// The exact track at the score times and the shooting cross-check's largest
@@ -184,27 +176,17 @@ fn input_work(u: &[f64], w: &[f64], v: &[f64], n: &[f64]) -> f64 {
 }
 
 impl Problem for FiberProblem {
-    fn family(&self) -> &'static Family {
-        &FAMILY
+    fn header(&self) -> &SceneHeader {
+        &self.header
     }
-    fn case(&self) -> &str {
-        &self.case
-    }
-    fn scene(&self) -> &str {
-        &self.scene
-    }
-    fn inputs_sha256(&self) -> &str {
-        &self.inputs_sha256
-    }
-    fn settings_sha256(&self) -> &str {
-        &self.settings_sha256
-    }
-    fn primary_metric(&self) -> &str {
-        &self.primary_metric
+    fn header_mut(&mut self) -> &mut SceneHeader {
+        &mut self.header
     }
     fn t_end(&self) -> f64 {
         self.setup.grid.t_end
     }
+    // The grid is the run setup's, not the header's (the runs step on it); the attached
+    // reference's times are the old grid's: dropped.
     fn set_t_end(&mut self, t_end: f64) {
         self.setup.grid.t_end = t_end;
         self.reference = None;
@@ -271,12 +253,13 @@ impl Problem for FiberProblem {
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
         if matches!(self.loading(), Loading::TipForce(_) | Loading::TipMoment(_)) {
+            let h = &self.header;
             let (r, sha): (ExactReference, String) =
-                reference::load_as(root, &self.case, &self.scene, &self.inputs_sha256)
+                reference::load_as(root, &h.case, &h.scene, &h.inputs_sha256)
                     .map_err(|e| e.to_string())?;
             let g = &self.setup.grid;
             reference::check_grid(&r.t, g.t_end, g.score_every).map_err(|m| {
-                reference::grid_error(root, &self.case, &self.scene, m).to_string()
+                reference::grid_error(root, &h.case, &h.scene, m).to_string()
             })?;
             self.reference = Some(Attached::Exact(Box::new(r), sha));
         } else {
@@ -354,8 +337,8 @@ impl Problem for FiberProblem {
         };
         let claim = diff.max(f64::EPSILON * self.setup.case.height);
         let r = ExactReference {
-            case: self.case.clone(),
-            scene: self.scene.clone(),
+            case: self.header.case.clone(),
+            scene: self.header.scene.clone(),
             t: track.t.clone(),
             top_displacement: track.columns[0].clone(),
             top_axial: track.columns[1].clone(),
@@ -363,7 +346,7 @@ impl Problem for FiberProblem {
             provenance: Provenance {
                 command: format!(
                     "mbdbench reference --case {} --scene {}",
-                    self.case, self.scene
+                    self.header.case, self.header.scene
                 ),
                 method: method.into(),
                 git_commit: summary::git_commit().into(),
@@ -375,9 +358,9 @@ impl Problem for FiberProblem {
                 },
             },
             accuracy_claim: claim,
-            inputs_sha256: self.inputs_sha256.clone(),
+            inputs_sha256: self.header.inputs_sha256.clone(),
         };
-        let path = reference::save_as(root, &self.case, &self.scene, &r)
+        let path = reference::save_as(root, &self.header.case, &self.header.scene, &r)
             .map_err(|e| e.to_string())?;
         Ok(format!(
             "{}: {method}; cross-check by shooting: {diff:.2e}; claim {claim:.2e}",
@@ -394,17 +377,18 @@ impl Problem for FiberProblem {
                          lists (the generator too) with its SHA-256, schema, columns, claims, \
                          score times, and every field of its model and settings as the \
                          case's; regenerate with: {}",
-                        self.case,
-                        self.scene,
+                        self.header.case,
+                        self.header.scene,
                         x.path.display(),
                         x.regenerate
                     ),
                 ),
-                Err(e) => (false, format!("{}/{}: {e}", self.case, self.scene)),
+                Err(e) => (false, format!("{}/{}: {e}", self.header.case, self.header.scene)),
             });
         }
+        let h = &self.header;
         let (stored, _): (ExactReference, _) =
-            reference::load_as(root, &self.case, &self.scene, &self.inputs_sha256)
+            reference::load_as(root, &h.case, &h.scene, &h.inputs_sha256)
                 .map_err(|e| e.to_string())?;
         // The bound is the claim recomputed now (the shooting cross-check's difference, as
         // `make_reference` computes it), never the file's; the file's claim must lie within
@@ -425,8 +409,8 @@ impl Problem for FiberProblem {
             ok,
             format!(
                 "{}/{}: recomputed vs stored: {d:.2e} (bound: the recomputed claim {claim_now:.2e}; the stored claim {c:.2e} within {CLAIM_SLACK}x of it: {})",
-                self.case,
-                self.scene,
+                h.case,
+                h.scene,
                 if claim_ok { "yes" } else { "NO" }
             ),
         ))
@@ -515,7 +499,7 @@ impl FiberProblem {
             "base_shear_reference".to_string(),
             v_ref.iter().map(|x| Some(*x)).collect(),
         );
-        (self.primary_metric == "top_displacement_error_max").then_some(d)
+        (self.header.primary_metric == "top_displacement_error_max").then_some(d)
     }
 
     /// The cyclic scene's base-shear and dissipated-energy errors against `r`; returns the
@@ -547,7 +531,7 @@ impl FiberProblem {
             "base_shear_reference".to_string(),
             v_ref.iter().map(|x| Some(*x)).collect(),
         );
-        self.primary_metric.starts_with("base_shear").then_some(d)
+        self.header.primary_metric.starts_with("base_shear").then_some(d)
     }
 
     /// The scene kind's metrics not computed become null with `why` (the dynamic scene's
@@ -616,7 +600,7 @@ impl FiberProblem {
             constraint: vec![None; scored.len()],
             conditioning: vec![f64::NAN; scored.len()],
             primary_error,
-            primary_metric: self.primary_metric.clone(),
+            primary_metric: self.header.primary_metric.clone(),
             tracks,
         }
     }

@@ -109,8 +109,6 @@ const FIGURES: Figures = Figures {
         ),
     ],
     across_scenes: &[(BY_FORMULATION, Measure::Primary)],
-    chart_group: None,
-    param_groups: &[],
     line_styles: "every line solid (one formulation per panel)",
     draw_failed: true,
     // The formulations differ in physics: the time error (the primary metric, against each
@@ -125,7 +123,6 @@ const FIGURES: Figures = Figures {
         // error (`BeamProblem::physical_claim`).
         claim_margin: 10.0,
     }),
-    t_axis: crate::problem::figures::seconds,
     // The rigid body's methods keep their colours; these are the beam's own.
     colours: &[
         ("newmark", [120, 105, 0]),    // dark olive
@@ -133,6 +130,7 @@ const FIGURES: Figures = Figures {
         ("gen_alpha", [0, 170, 170]),  // teal
         ("gen_alpha_i3", [0, 40, 140]), // navy
     ],
+    ..Figures::NONE
 };
 
 const fn metric(name: &'static str, unit: &'static str, reference_error: bool) -> Metric {

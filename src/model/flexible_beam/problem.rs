@@ -12,6 +12,7 @@
 //! `tip_deflection_max` (max `|v_tip|` over the samples, also of a failed run: the
 //! divergence verdict's evidence). Errors against the reference are absent for a failed run;
 //! a metric that does not apply is null with the reason.
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use super::base::Base;
@@ -22,7 +23,7 @@ use super::reference::BeamReference;
 use crate::case::{Case, CaseError, Scene};
 use crate::integrate::{Limits, MethodInfo};
 use crate::metrics::Scores;
-use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
+use crate::problem::{Columns, Outcome, Problem, SceneHeader, Stepping, Variant, Want};
 use crate::reference;
 use crate::run::{Grid, Observe, RunOutput};
 use crate::case::Ladders;
@@ -47,11 +48,7 @@ impl BeamSetup {
 /// A flexible-beam scene with its reference (once attached).
 #[derive(Debug, Clone)]
 pub struct BeamProblem {
-    case: String,
-    scene: String,
-    inputs_sha256: String,
-    settings_sha256: String,
-    primary_metric: String,
+    header: SceneHeader,
     pub(super) setup: BeamSetup,
     ladders: Ladders,
     quick: Ladders,
@@ -69,11 +66,7 @@ impl BeamProblem {
             });
         };
         Ok(BeamProblem {
-            case: case.name.clone(),
-            scene: scene.name.clone(),
-            inputs_sha256: crate::case::inputs_sha256(case, scene),
-            settings_sha256: scene.settings_sha256.clone(),
-            primary_metric: case.primary_metric.clone(),
+            header: SceneHeader::new(&FAMILY, case, scene),
             setup: BeamSetup {
                 scene: s.clone(),
                 numerics: *n,
@@ -101,28 +94,72 @@ impl BeamProblem {
         (table()[v.index].1)(setup, stepping, observe)
     }
 
-    /// The scores and series of a run.
+    /// The scores and series of a run: the whole-run measures (`run_measures`), the time
+    /// error, the errors against the reference (`reference_errors`), then the series with
+    /// the primary metric's error track and the tip's tracks (`tracks`).
     fn score(&self, v: &Variant, out: &RunOutput<BeamObs>) -> (Scores, Series) {
         let mut s = Scores::default();
-        let scene = &self.setup.scene;
         let tracked: Vec<(f64, BeamObs)> = out.samples.iter().map(|x| (x.t, x.obs)).collect();
         let scored: Vec<(f64, BeamObs)> = out.scored().map(|x| (x.t, x.obs)).collect();
+        let failed = out
+            .failure
+            .as_ref()
+            .map(|f| format!("run failed ({}) at t = {}", f.kind.name(), f.t));
+        let bal_scored = self.run_measures(v, out, &tracked, &scored, &failed, &mut s);
+        let mut primary_error = None;
+        let time_error = self.time_error(v, &failed, &scored);
+        match &time_error {
+            Ok(e) => s.set(
+                "tip_time_error_max",
+                e.iter().copied().fold(0.0, f64::max),
+            ),
+            Err(why) => s.null("tip_time_error_max", why.clone()),
+        }
+        if self.header.primary_metric == "tip_time_error_max" {
+            primary_error = time_error.ok();
+        }
+        if let Some(e) = self.reference_errors(&failed, &scored, &mut s) {
+            primary_error = Some(e);
+        }
+        let series = Series {
+            t: scored.iter().map(|x| x.0).collect(),
+            energy: bal_scored.unwrap_or_else(|| vec![f64::NAN; scored.len()]),
+            constraint: out.scored().map(|x| x.residual).collect(),
+            conditioning: out.scored().map(|x| x.conditioning).collect(),
+            primary_error,
+            primary_metric: self.header.primary_metric.clone(),
+            tracks: self.tracks(&scored),
+        };
+        (s, series)
+    }
+
+    /// The measures of a run that need no reference: `tip_deflection_max` over the samples
+    /// (`tracked`), `energy_balance_error_max`, `momentum_error_max` and
+    /// `constraint_error_max` over the score times (`scored`), each null with the reason
+    /// where it does not apply. Returns the balance's residual at the score times (the
+    /// series' `energy`), None when the samples miss the end of the torque.
+    fn run_measures(
+        &self,
+        v: &Variant,
+        out: &RunOutput<BeamObs>,
+        tracked: &[(f64, BeamObs)],
+        scored: &[(f64, BeamObs)],
+        failed: &Option<String>,
+        s: &mut Scores,
+    ) -> Option<Vec<f64>> {
+        let scene = &self.setup.scene;
         let tip_max = tracked
             .iter()
             .map(|(_, o)| o.tip_deflection.abs())
             .fold(0.0, f64::max);
         s.set("tip_deflection_max", tip_max);
-        let failed = out
-            .failure
-            .as_ref()
-            .map(|f| format!("run failed ({}) at t = {}", f.kind.name(), f.t));
         // The balance needs the free hub's angle at t_off: the whole sample track holds it.
-        let bal = balance(&scene.base, &tracked);
+        let bal = balance(&scene.base, tracked);
         let stride = out.score_stride.max(1);
         let bal_scored: Option<Vec<f64>> = bal
             .as_ref()
             .map(|b| b.iter().step_by(stride).copied().collect());
-        match (&failed, &bal_scored) {
+        match (failed, &bal_scored) {
             (Some(why), _) => s.null("energy_balance_error_max", why.clone()),
             (None, None) => s.null(
                 "energy_balance_error_max",
@@ -133,7 +170,7 @@ impl BeamProblem {
                 b.iter().fold(0.0_f64, |m, x| m.max(x.abs())) / scene.energy_scale,
             ),
         }
-        match (scene.base, &failed) {
+        match (scene.base, failed) {
             (Base::SpinUp { .. }, _) => s.null(
                 "momentum_error_max",
                 "prescribed base: the drive changes the angular momentum",
@@ -150,7 +187,7 @@ impl BeamProblem {
             }
         }
         if super::family::constrained(v.formulation) {
-            match &failed {
+            match failed {
                 Some(why) => s.null("constraint_error_max", why.clone()),
                 None => s.set(
                     "constraint_error_max",
@@ -163,62 +200,68 @@ impl BeamProblem {
                 format!("{} has no boundary constraints", v.formulation),
             );
         }
-        let mut primary_error = None;
-        let time_error = self.time_error(v, &failed, &scored);
-        match &time_error {
-            Ok(e) => s.set(
-                "tip_time_error_max",
-                e.iter().copied().fold(0.0, f64::max),
-            ),
-            Err(why) => s.null("tip_time_error_max", why.clone()),
+        bal_scored
+    }
+
+    /// `tip_deflection_error_max` and `hub_rate_error_max` against the attached reference
+    /// (nothing without one), null with the reason where they do not apply. Returns the
+    /// primary metric's error at the score times when it is one of them.
+    fn reference_errors(
+        &self,
+        failed: &Option<String>,
+        scored: &[(f64, BeamObs)],
+        s: &mut Scores,
+    ) -> Option<Vec<f64>> {
+        let (r, _) = self.reference.as_ref()?;
+        let names = ["tip_deflection_error_max", "hub_rate_error_max"];
+        let free = matches!(self.setup.scene.base, Base::Free { .. });
+        if !free {
+            s.null(names[1], "prescribed base: the hub rate is given");
         }
-        if self.primary_metric == "tip_time_error_max" {
-            primary_error = time_error.ok();
-        }
-        if let Some((r, _)) = &self.reference {
-            let names = ["tip_deflection_error_max", "hub_rate_error_max"];
-            let free = matches!(scene.base, Base::Free { .. });
-            if !free {
-                s.null(names[1], "prescribed base: the hub rate is given");
+        if let Some(why) = failed {
+            s.null(names[0], why.clone());
+            if free {
+                s.null(names[1], why.clone());
             }
-            if let Some(why) = &failed {
-                s.null(names[0], why.clone());
-                if free {
-                    s.null(names[1], why.clone());
-                }
-            } else if scored.len() != r.t.len() {
-                let why = format!(
-                    "run has {} score points, reference {}",
-                    scored.len(),
-                    r.t.len()
-                );
-                s.null(names[0], why.clone());
-                if free {
-                    s.null(names[1], why);
-                }
-            } else {
-                let tip: Vec<f64> = scored
-                    .iter()
-                    .zip(&r.tip_deflection)
-                    .map(|((_, o), x)| (o.tip_deflection - x).abs())
-                    .collect();
-                let rate: Vec<f64> = scored
-                    .iter()
-                    .zip(&r.hub_rate)
-                    .map(|((_, o), x)| (o.hub_rate - x).abs())
-                    .collect();
-                s.set(names[0], tip.iter().copied().fold(0.0, f64::max));
-                if free {
-                    s.set(names[1], rate.iter().copied().fold(0.0, f64::max));
-                }
-                match self.primary_metric.as_str() {
-                    "tip_deflection_error_max" => primary_error = Some(tip),
-                    "hub_rate_error_max" if free => primary_error = Some(rate),
-                    _ => {}
-                }
-            }
+            return None;
         }
-        let mut tracks = std::collections::BTreeMap::new();
+        if scored.len() != r.t.len() {
+            let why = format!(
+                "run has {} score points, reference {}",
+                scored.len(),
+                r.t.len()
+            );
+            s.null(names[0], why.clone());
+            if free {
+                s.null(names[1], why);
+            }
+            return None;
+        }
+        let tip: Vec<f64> = scored
+            .iter()
+            .zip(&r.tip_deflection)
+            .map(|((_, o), x)| (o.tip_deflection - x).abs())
+            .collect();
+        let rate: Vec<f64> = scored
+            .iter()
+            .zip(&r.hub_rate)
+            .map(|((_, o), x)| (o.hub_rate - x).abs())
+            .collect();
+        s.set(names[0], tip.iter().copied().fold(0.0, f64::max));
+        if free {
+            s.set(names[1], rate.iter().copied().fold(0.0, f64::max));
+        }
+        match self.header.primary_metric.as_str() {
+            "tip_deflection_error_max" => Some(tip),
+            "hub_rate_error_max" if free => Some(rate),
+            _ => None,
+        }
+    }
+
+    /// The series' tracks: the tip deflection at the score times and, with a reference
+    /// attached, the reference's where its score grid has the time.
+    fn tracks(&self, scored: &[(f64, BeamObs)]) -> BTreeMap<String, Vec<Option<f64>>> {
+        let mut tracks = BTreeMap::new();
         tracks.insert(
             "tip_deflection".to_string(),
             scored.iter().map(|(_, o)| Some(o.tip_deflection)).collect(),
@@ -238,16 +281,7 @@ impl BeamProblem {
                     .collect(),
             );
         }
-        let series = Series {
-            t: scored.iter().map(|x| x.0).collect(),
-            energy: bal_scored.unwrap_or_else(|| vec![f64::NAN; scored.len()]),
-            constraint: out.scored().map(|x| x.residual).collect(),
-            conditioning: out.scored().map(|x| x.conditioning).collect(),
-            primary_error,
-            primary_metric: self.primary_metric.clone(),
-            tracks,
-        };
-        (s, series)
+        tracks
     }
 
     /// `|v_tip - v_tip,self|` on the score grid against the formulation's self-convergence
@@ -311,27 +345,17 @@ impl BeamProblem {
 }
 
 impl Problem for BeamProblem {
-    fn family(&self) -> &'static Family {
-        &FAMILY
+    fn header(&self) -> &SceneHeader {
+        &self.header
     }
-    fn case(&self) -> &str {
-        &self.case
-    }
-    fn scene(&self) -> &str {
-        &self.scene
-    }
-    fn inputs_sha256(&self) -> &str {
-        &self.inputs_sha256
-    }
-    fn settings_sha256(&self) -> &str {
-        &self.settings_sha256
-    }
-    fn primary_metric(&self) -> &str {
-        &self.primary_metric
+    fn header_mut(&mut self) -> &mut SceneHeader {
+        &mut self.header
     }
     fn t_end(&self) -> f64 {
         self.setup.grid.t_end
     }
+    // The grid is the run setup's, not the header's (the runs step on it); the attached
+    // reference's times are the old grid's: dropped.
     fn set_t_end(&mut self, t_end: f64) {
         self.setup.grid.t_end = t_end;
         self.reference = None;
@@ -349,12 +373,13 @@ impl Problem for BeamProblem {
         None
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
+        let h = &self.header;
         let (r, sha): (BeamReference, String) =
-            reference::load_as(root, &self.case, &self.scene, &self.inputs_sha256)
+            reference::load_as(root, &h.case, &h.scene, &h.inputs_sha256)
                 .map_err(|e| e.to_string())?;
         let g = &self.setup.grid;
         reference::check_grid(&r.t, g.t_end, g.score_every).map_err(|m| {
-            reference::grid_error(root, &self.case, &self.scene, m).to_string()
+            reference::grid_error(root, &h.case, &h.scene, m).to_string()
         })?;
         self.reference = Some((r, sha));
         Ok(())

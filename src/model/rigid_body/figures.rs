@@ -105,9 +105,6 @@ pub const FIGURES: Figures = Figures {
         },
     ],
     line_styles: "body formulation solid, spatial dashed",
-    draw_failed: false,
-    physical: None,
-    t_axis: crate::problem::figures::seconds,
     colours: &[
         ("euler", [127, 127, 127]),                 // grey
         ("rk4", [31, 119, 180]),                    // blue
@@ -125,4 +122,5 @@ pub const FIGURES: Figures = Figures {
         ("gauss6_kahan", [120, 60, 0]),             // dark brown
         ("simo_wong_kahan", [0, 90, 75]),           // dark sea green
     ],
+    ..Figures::NONE
 };

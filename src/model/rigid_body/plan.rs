@@ -1,9 +1,10 @@
 //! The rigid body's plan of one scene: the compiled body, the initial state, the grid, the
-//! work limits, the ladders and the physics hash, as `RigidProblem`, the stability study and
-//! the benches use them (cases/README.md, "Case-file keys"; the shared parts come from
-//! `case` and `catalogue`). Fails with a `CaseError` naming the scene when the scene is not a rigid-body
-//! scene.
+//! work limits, the ladders and the scene's header (names, hashes, primary metric), as
+//! `RigidProblem`, the stability study and the benches use them (cases/README.md, "Case-file
+//! keys"; the shared parts come from `case` and `catalogue`). Fails with a `CaseError` naming
+//! the scene when the scene is not a rigid-body scene.
 use crate::case::{self, Case, Scene};
+use crate::problem::SceneHeader;
 use crate::run::Grid;
 use crate::case::Ladders;
 
@@ -13,14 +14,10 @@ use super::registry::RigidSetup;
 /// Everything the suite needs of one scene.
 #[derive(Debug, Clone)]
 pub struct ScenePlan {
-    pub case: String,
-    pub scene: String,
+    /// The scene's family, names, hashes and primary metric (`RigidProblem::header`).
+    pub header: SceneHeader,
     pub setup: RigidSetup,
     pub energy_scale: f64,
-    pub primary_metric: String,
-    pub inputs_sha256: String,
-    /// The scene's `settings_sha256` (`case::hash`).
-    pub settings_sha256: String,
     pub ladders: Ladders,
     pub quick: Ladders,
 }
@@ -37,8 +34,7 @@ pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
         })?;
     let limits = c.limits();
     Ok(ScenePlan {
-        case: c.name.clone(),
-        scene: s.name.clone(),
+        header: SceneHeader::new(&super::family::FAMILY, c, s),
         setup: RigidSetup {
             body,
             initial,
@@ -51,9 +47,6 @@ pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
             observe: crate::run::Observe::Grid,
         },
         energy_scale: c.energy_scale,
-        primary_metric: c.primary_metric.clone(),
-        inputs_sha256: case::inputs_sha256(c, s),
-        settings_sha256: s.settings_sha256.clone(),
         ladders: s.ladder(false).values(),
         quick: s.ladder(true).values(),
     })

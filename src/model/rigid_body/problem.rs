@@ -12,7 +12,7 @@ use std::path::Path;
 
 use crate::case::ReferenceKind;
 use crate::integrate::MethodInfo;
-use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
+use crate::problem::{Columns, Outcome, Problem, SceneHeader, Stepping, Variant, Want};
 use super::reference::{self, Loaded};
 use crate::model::rigid_body::refgen;
 use crate::model::rigid_body::registry::{self, RigidSetup};
@@ -48,12 +48,12 @@ impl RigidProblem {
     /// The stored reference of the scene, its values valid (`Reference::check_columns`) and
     /// its times the scene's score times; errors name the file and key.
     fn load_reference(&self, root: &Path) -> Result<Loaded, String> {
-        let p = &self.plan;
-        let l = reference::load(root, &p.case, &p.scene, &p.inputs_sha256)
+        let h = &self.plan.header;
+        let l = reference::load(root, &h.case, &h.scene, &h.inputs_sha256)
             .map_err(|e| e.to_string())?;
-        let g = &p.setup.grid;
+        let g = &self.plan.setup.grid;
         crate::reference::check_grid(&l.reference.t, g.t_end, g.score_every)
-            .map_err(|m| crate::reference::grid_error(root, &p.case, &p.scene, m).to_string())?;
+            .map_err(|m| crate::reference::grid_error(root, &h.case, &h.scene, m).to_string())?;
         Ok(l)
     }
 }
@@ -71,27 +71,17 @@ fn value(s: Stepping) -> f64 {
 }
 
 impl Problem for RigidProblem {
-    fn family(&self) -> &'static Family {
-        &super::family::FAMILY
+    fn header(&self) -> &SceneHeader {
+        &self.plan.header
     }
-    fn case(&self) -> &str {
-        &self.plan.case
-    }
-    fn scene(&self) -> &str {
-        &self.plan.scene
-    }
-    fn inputs_sha256(&self) -> &str {
-        &self.plan.inputs_sha256
-    }
-    fn settings_sha256(&self) -> &str {
-        &self.plan.settings_sha256
-    }
-    fn primary_metric(&self) -> &str {
-        &self.plan.primary_metric
+    fn header_mut(&mut self) -> &mut SceneHeader {
+        &mut self.plan.header
     }
     fn t_end(&self) -> f64 {
         self.plan.setup.grid.t_end
     }
+    // The grid is the run setup's, not the header's (the runs step on it), and the timing
+    // setup's copy moves with it; the attached reference's times are the old grid's: dropped.
     fn set_t_end(&mut self, t_end: f64) {
         self.plan.setup.grid.t_end = t_end;
         self.timing.grid.t_end = t_end;
@@ -144,7 +134,7 @@ impl Problem for RigidProblem {
                 let cx = ScoreContext {
                     body: &self.plan.setup.body,
                     energy_scale: self.plan.energy_scale,
-                    primary_metric: &self.plan.primary_metric,
+                    primary_metric: &self.plan.header.primary_metric,
                     reference: self.reference.as_ref().map(|l| &l.reference),
                 };
                 let (scores, series) = score::score(&out, &cx);

@@ -81,7 +81,7 @@ pub fn primary_for(kind: ReferenceKind, plan: &ScenePlan) -> Result<Primary, Str
             if !b.springs.is_empty() || b.gravity.is_some() || b.pivot_com.is_some() {
                 return Err(format!(
                     "{}/{}: an exact reference needs a torque-free body",
-                    plan.case, plan.scene
+                    plan.header.case, plan.header.scene
                 ));
             }
             let j = b.inertia;
@@ -89,7 +89,7 @@ pub fn primary_for(kind: ReferenceKind, plan: &ScenePlan) -> Result<Primary, Str
             if off != 0.0 {
                 return Err(format!(
                     "{}/{}: an exact reference needs a diagonal inertia",
-                    plan.case, plan.scene
+                    plan.header.case, plan.header.scene
                 ));
             }
             if j[(0, 0)] == j[(1, 1)] && j[(1, 1)] == j[(2, 2)] {
@@ -101,8 +101,8 @@ pub fn primary_for(kind: ReferenceKind, plan: &ScenePlan) -> Result<Primary, Str
         other => Err(format!(
             "{}/{}: the rigid body computes its references; `reference = \"{}\"` is not one \
              of its kinds (numerical, exact)",
-            plan.case,
-            plan.scene,
+            plan.header.case,
+            plan.header.scene,
             other.name()
         )),
     }
@@ -275,8 +275,8 @@ pub fn build(kind: ReferenceKind, plan: &ScenePlan) -> Result<Reference, String>
     let body = &plan.setup.body;
     let to_arr3 = |v: &Vector3<f64>| [v.x, v.y, v.z];
     Ok(Reference {
-        case: plan.case.clone(),
-        scene: plan.scene.clone(),
+        case: plan.header.case.clone(),
+        scene: plan.header.scene.clone(),
         t: primary.t.clone(),
         position: primary.obs.iter().map(|o| to_arr3(&o.x)).collect(),
         quaternion: primary
@@ -293,7 +293,7 @@ pub fn build(kind: ReferenceKind, plan: &ScenePlan) -> Result<Reference, String>
         provenance: Provenance {
             command: format!(
                 "mbdbench reference --case {} --scene {}",
-                plan.case, plan.scene
+                plan.header.case, plan.header.scene
             ),
             method,
             tolerance: None,
@@ -316,7 +316,7 @@ pub fn build(kind: ReferenceKind, plan: &ScenePlan) -> Result<Reference, String>
             velocity: translates.then_some(claim(d[2])),
             omega: claim(d[3]),
         },
-        inputs_sha256: plan.inputs_sha256.clone(),
+        inputs_sha256: plan.header.inputs_sha256.clone(),
     })
 }
 
@@ -391,8 +391,8 @@ pub fn check(
     let text = |x: Option<f64>| x.map_or("-".to_string(), |x| format!("{x:.2e}"));
     let msg = format!(
         "{}/{}: recomputed vs stored: position {:.2e}, rotation {:.2e}, velocity {:.2e}, omega {:.2e} (bounds recomputed from the cross-check and energy drift: {:.2e}, {:.2e}, {:.2e}, {:.2e}; stored claims {}, {}, {}, {} within {CLAIM_SLACK}x of them: {}); energy column vs its states {:.2e}, its drift {:.2e} (recomputed {:.2e})",
-        plan.case,
-        plan.scene,
+        plan.header.case,
+        plan.header.scene,
         d[0],
         d[1],
         d[2],

@@ -31,13 +31,9 @@ const FIGURES: Figures = Figures {
     convergence: &[ALL],
     timeseries: &[(Quantity::Energy, ALL)],
     across_scenes: &[(ALL, Measure::Primary)],
-    chart_group: None,
-    param_groups: &[],
     line_styles: "chain_nodal solid, chain_modal dashed",
-    draw_failed: false,
-    physical: None,
-    t_axis: crate::problem::figures::seconds,
     colours: &[("stormer_verlet", [0, 255, 127])], // spring green
+    ..Figures::NONE
 };
 
 /// The spring-chain family.

@@ -14,7 +14,7 @@ use super::{Chain, ChainObs};
 use crate::case::{Case, CaseError, Scene};
 use crate::integrate::{Limits, MethodInfo};
 use crate::metrics::{Scores, energy_drift};
-use crate::problem::{Columns, Family, Outcome, Problem, Stepping, Variant, Want};
+use crate::problem::{Columns, Outcome, Problem, SceneHeader, Stepping, Variant, Want};
 use crate::reference::{self, Stored};
 use crate::run::{Grid, Observe, RunOutput};
 use crate::case::Ladders;
@@ -95,11 +95,7 @@ impl Stored for ChainReference {
 /// A spring-chain scene with its reference (once attached).
 #[derive(Debug, Clone)]
 pub struct ChainProblem {
-    case: String,
-    scene: String,
-    inputs_sha256: String,
-    settings_sha256: String,
-    primary_metric: String,
+    header: SceneHeader,
     energy_scale: f64,
     setup: ChainSetup,
     ladders: Ladders,
@@ -119,11 +115,7 @@ impl ChainProblem {
             });
         };
         Ok(ChainProblem {
-            case: case.name.clone(),
-            scene: scene.name.clone(),
-            inputs_sha256: crate::case::inputs_sha256(case, scene),
-            settings_sha256: scene.settings_sha256.clone(),
-            primary_metric: case.primary_metric.clone(),
+            header: SceneHeader::new(&FAMILY, case, scene),
             energy_scale: case.energy_scale,
             setup: ChainSetup {
                 chain: c.chain(),
@@ -189,27 +181,17 @@ fn stored_track(r: &ChainReference) -> Vec<ChainObs> {
 }
 
 impl Problem for ChainProblem {
-    fn family(&self) -> &'static Family {
-        &FAMILY
+    fn header(&self) -> &SceneHeader {
+        &self.header
     }
-    fn case(&self) -> &str {
-        &self.case
-    }
-    fn scene(&self) -> &str {
-        &self.scene
-    }
-    fn inputs_sha256(&self) -> &str {
-        &self.inputs_sha256
-    }
-    fn settings_sha256(&self) -> &str {
-        &self.settings_sha256
-    }
-    fn primary_metric(&self) -> &str {
-        &self.primary_metric
+    fn header_mut(&mut self) -> &mut SceneHeader {
+        &mut self.header
     }
     fn t_end(&self) -> f64 {
         self.setup.grid.t_end
     }
+    // The grid is the run setup's, not the header's (the runs step on it); the attached
+    // reference's times are the old grid's: dropped.
     fn set_t_end(&mut self, t_end: f64) {
         self.setup.grid.t_end = t_end;
         self.reference = None;
@@ -227,12 +209,13 @@ impl Problem for ChainProblem {
         None
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
+        let h = &self.header;
         let (r, sha): (ChainReference, String) =
-            reference::load_as(root, &self.case, &self.scene, &self.inputs_sha256)
+            reference::load_as(root, &h.case, &h.scene, &h.inputs_sha256)
                 .map_err(|e| e.to_string())?;
         let g = &self.setup.grid;
         reference::check_grid(&r.t, g.t_end, g.score_every).map_err(|m| {
-            reference::grid_error(root, &self.case, &self.scene, m).to_string()
+            reference::grid_error(root, &h.case, &h.scene, m).to_string()
         })?;
         self.reference = Some((r, sha));
         Ok(())
@@ -305,8 +288,8 @@ impl Problem for ChainProblem {
         let energy: Vec<f64> = exact.iter().map(|o| self.setup.chain.energy(o)).collect();
         let drift = energy_drift::max_relative(&energy, self.energy_scale);
         let r = ChainReference {
-            case: self.case.clone(),
-            scene: self.scene.clone(),
+            case: self.header.case.clone(),
+            scene: self.header.scene.clone(),
             t,
             displacement: exact.iter().map(|o| [o.x.x, o.x.y, o.x.z]).collect(),
             velocity: exact.iter().map(|o| [o.v.x, o.v.y, o.v.z]).collect(),
@@ -314,7 +297,7 @@ impl Problem for ChainProblem {
             provenance: Provenance {
                 command: format!(
                     "mbdbench reference --case {} --scene {}",
-                    self.case, self.scene
+                    self.header.case, self.header.scene
                 ),
                 method: "exact modal solution".into(),
                 git_commit: summary::git_commit().into(),
@@ -331,9 +314,9 @@ impl Problem for ChainProblem {
                 displacement: d[0].max(drift),
                 velocity: d[1].max(drift),
             },
-            inputs_sha256: self.inputs_sha256.clone(),
+            inputs_sha256: self.header.inputs_sha256.clone(),
         };
-        let path = reference::save_as(root, &self.case, &self.scene, &r)
+        let path = reference::save_as(root, &self.header.case, &self.header.scene, &r)
             .map_err(|e| e.to_string())?;
         Ok(format!(
             "{}: exact modal solution; cross-check {}: displacement {:.2e}, velocity {:.2e}; claim displacement {:.2e}",
@@ -345,8 +328,9 @@ impl Problem for ChainProblem {
         ))
     }
     fn check_reference(&self, root: &Path) -> Result<(bool, String), String> {
+        let h = &self.header;
         let (stored, _): (ChainReference, _) =
-            reference::load_as(root, &self.case, &self.scene, &self.inputs_sha256)
+            reference::load_as(root, &h.case, &h.scene, &h.inputs_sha256)
                 .map_err(|e| e.to_string())?;
         let (_, now) = self.exact_track()?;
         let d = max_diffs(&now, &stored_track(&stored))?;
@@ -356,7 +340,7 @@ impl Problem for ChainProblem {
             ok,
             format!(
                 "{}/{}: recomputed vs stored: displacement {:.2e}, velocity {:.2e} (claims {:.2e}, {:.2e})",
-                self.case, self.scene, d[0], d[1], c.displacement, c.velocity
+                h.case, h.scene, d[0], d[1], c.displacement, c.velocity
             ),
         ))
     }
@@ -395,7 +379,7 @@ impl ChainProblem {
                     s.set(names[0], d[0]);
                     s.set(names[1], d[1]);
                 }
-                let vel = self.primary_metric == "velocity_error_max";
+                let vel = self.header.primary_metric == "velocity_error_max";
                 primary_error = Some(
                     obs.iter()
                         .zip(&reference)
@@ -410,7 +394,7 @@ impl ChainProblem {
             constraint: scored.iter().map(|x| x.residual).collect(),
             conditioning: scored.iter().map(|x| x.conditioning).collect(),
             primary_error,
-            primary_metric: self.primary_metric.clone(),
+            primary_metric: self.header.primary_metric.clone(),
             tracks: Default::default(),
         };
         (s, series)

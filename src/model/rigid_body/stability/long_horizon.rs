@@ -380,9 +380,9 @@ pub fn study(cases: &[Case], filter: &VariantFilter, opts: &StudyOptions) -> Res
                 ..setup.limits
             };
             let mut job = Job {
-                case: plan.case.clone(),
-                scene: plan.scene.clone(),
-                inputs_sha256: plan.inputs_sha256.clone(),
+                case: plan.header.case.clone(),
+                scene: plan.header.scene.clone(),
+                inputs_sha256: plan.header.inputs_sha256.clone(),
                 energy_scale: plan.energy_scale,
                 setup,
                 dt,

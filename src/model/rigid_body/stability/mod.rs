@@ -69,11 +69,11 @@ pub fn study_scenes(
     let plans = crate::model::rigid_body::plan::plans(cases, case_filter, scene_filter)?;
     let mut out = vec![];
     for p in &plans {
-        let Some(c) = cases.iter().find(|c| c.name == p.case) else {
+        let Some(c) = cases.iter().find(|c| c.name == p.header.case) else {
             continue;
         };
         let Some(spec) = &c.stability else { continue };
-        if quick && !spec.quick.contains(&p.scene) {
+        if quick && !spec.quick.contains(&p.header.scene) {
             continue;
         }
         if let Some(s) = search::StudyScene::new(c, p)? {

@@ -99,7 +99,7 @@ impl StudyScene {
             .ok_or_else(|| {
                 format!(
                     "{}: [stability]: scene {} has no time scale (no elastic mode, no rotation)",
-                    c.file, plan.scene
+                    c.file, plan.header.scene
                 )
             })?;
         let periods = spec.periods.ok_or_else(|| {
@@ -378,8 +378,8 @@ pub fn record(v: &Variant, scene: &StudyScene, stable: &Found, accurate: &Found)
     metrics.insert("fastest_period".into(), Some(scene.period));
     Record {
         key: crate::summary::RunKey::new(
-            &scene.plan.case,
-            &scene.plan.scene,
+            &scene.plan.header.case,
+            &scene.plan.header.scene,
             v.param,
             v.integrator,
             v.formulation,
@@ -393,8 +393,8 @@ pub fn record(v: &Variant, scene: &StudyScene, stable: &Found, accurate: &Found)
         metric_reasons: reasons,
         stats: crate::integrate::Stats::default(),
         wall_s: None,
-        inputs_sha256: scene.plan.inputs_sha256.clone(),
-        settings_sha256: Some(scene.plan.settings_sha256.clone()),
+        inputs_sha256: scene.plan.header.inputs_sha256.clone(),
+        settings_sha256: Some(scene.plan.header.settings_sha256.clone()),
         reference_sha256: None,
         series: None,
         series_reason: None,

@@ -107,7 +107,7 @@ fn on_the_fly_reference_matches_the_stored_one() {
         &crate::cli::default_references(),
         "nine_spring",
         "two_angles",
-        &plan.inputs_sha256,
+        &plan.header.inputs_sha256,
     )
     .unwrap()
     .reference;

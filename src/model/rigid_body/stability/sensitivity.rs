@@ -141,10 +141,10 @@ pub fn study(cases: &[Case], plans: &[ScenePlan], opts: &StudyOptions) -> Result
         .filter(|p| {
             !opts.quick
                 || cases.iter().any(|c| {
-                    c.name == p.case
+                    c.name == p.header.case
                         && c.stability
                             .as_ref()
-                            .is_some_and(|s| s.quick.contains(&p.scene))
+                            .is_some_and(|s| s.quick.contains(&p.header.scene))
                 })
         })
         .collect();
@@ -200,7 +200,7 @@ fn record(
                 Some(i) => g[i - 1].0,
             };
             metrics.insert("predictable_horizon".into(), Some(horizon));
-            let rel = format!("series/sensitivity/{}/{}.json", plan.case, plan.scene);
+            let rel = format!("series/sensitivity/{}/{}.json", plan.header.case, plan.header.scene);
             series = Some((
                 rel,
                 serde_json::json!({
@@ -211,7 +211,13 @@ fn record(
         }
     }
     let rec = Record {
-        key: crate::summary::RunKey::new(&plan.case, &plan.scene, "so3", "dop853", "body"),
+        key: crate::summary::RunKey::new(
+            &plan.header.case,
+            &plan.header.scene,
+            "so3",
+            "dop853",
+            "body",
+        ),
         dt: None,
         tol: Some(TOL),
         status: Status::Ok,
@@ -221,8 +227,8 @@ fn record(
         metric_reasons: reasons,
         stats: Default::default(),
         wall_s: None,
-        inputs_sha256: plan.inputs_sha256.clone(),
-        settings_sha256: Some(plan.settings_sha256.clone()),
+        inputs_sha256: plan.header.inputs_sha256.clone(),
+        settings_sha256: Some(plan.header.settings_sha256.clone()),
         reference_sha256: None,
         series: series.as_ref().map(|s| s.0.clone()),
         series_reason: None,

@@ -176,8 +176,8 @@ fn run_one(
     };
     Record {
         key: crate::summary::RunKey::new(
-            &plan.case,
-            &plan.scene,
+            &plan.header.case,
+            &plan.header.scene,
             v.param,
             v.integrator,
             v.formulation,
@@ -191,8 +191,8 @@ fn run_one(
         metric_reasons: reasons,
         stats,
         wall_s: None,
-        inputs_sha256: plan.inputs_sha256.clone(),
-        settings_sha256: Some(plan.settings_sha256.clone()),
+        inputs_sha256: plan.header.inputs_sha256.clone(),
+        settings_sha256: Some(plan.header.settings_sha256.clone()),
         reference_sha256: None,
         series: None,
         series_reason: None,
@@ -238,7 +238,7 @@ mod tests {
         let generated = crate::model::rigid_body::plan::scene_plan(c, &s).unwrap();
         let stored =
             crate::model::rigid_body::plan::scene_plan(c, c.scene(TEMPLATE).unwrap()).unwrap();
-        assert_eq!(generated.inputs_sha256, stored.inputs_sha256);
+        assert_eq!(generated.header.inputs_sha256, stored.header.inputs_sha256);
     }
 
     /// Quick tier: so3 and quat_proj are insensitive to d (rk4 at 1e-2: error 1e-10 or less

@@ -64,11 +64,11 @@ pub fn scenes(c: &Case, quick: bool) -> Result<Vec<(i32, StudyScene, StudyScene)
         let cj = stiffened(c, j);
         let mut plan =
             crate::model::rigid_body::plan::scene_plan(&cj, scene).map_err(|e| e.to_string())?;
-        plan.scene = scene_name(j, false);
+        plan.header.scene = scene_name(j, false);
         let periods = StudyScene::new(&cj, &plan)?
             .ok_or_else(|| format!("{}: no [stability] table", c.file))?
             .tier(quick);
-        plan.scene = scene_name(j, true);
+        plan.header.scene = scene_name(j, true);
         let fixed =
             StudyScene::with_horizon(&plan, periods.period, FIXED_HORIZON, spec).tier(quick);
         out.push((j, periods, fixed));
@@ -100,7 +100,8 @@ pub fn study(
         .filter(|r| r.key.case == CASE && r.key.scene == SCENE)
         .collect();
     let unit = scene_name(0, false);
-    let mut part = if !own.is_empty() && periods.first().is_some_and(|s| s.plan.scene == unit) {
+    let unit_first = periods.first().is_some_and(|s| s.plan.header.scene == unit);
+    let mut part = if !own.is_empty() && unit_first {
         let mut p = step_search(&periods[1..], filter, opts, "stiffness")?;
         p.records.extend(own.into_iter().map(|r| {
             let mut r = r.clone();
