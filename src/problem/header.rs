@@ -9,12 +9,13 @@
 //! physics and its reference's numerical settings: a stored reference or a baseline record
 //! with another hash is stale), `settings_sha256` is the scene's `Scene::settings_sha256`;
 //! `primary_metric` is the case's, one of `family.metrics` (the loader refuses any other).
-//! Nothing here is read by a run: changing a field through `Problem::header_mut` changes how
-//! the records are labelled, never a number in them.
+//! Nothing here is read by a run: the header labels the records, never changes a number in
+//! them.
 //!
 //! The scene's grid (`t_end`, `score_every`, `sample_every`) is not here: it is part of what a
 //! family's run functions read (its setup's `run::Grid`), and one copy of it, in the setup,
-//! is the one the steps are taken on. `Problem::t_end` and its kin read it there.
+//! is the one the steps are taken on. `Problem::grid` gives it out and `Problem::t_end` and
+//! its kin read it there.
 use super::Family;
 use crate::case::{Case, Scene};
 
@@ -35,11 +36,10 @@ use crate::case::{Case, Scene};
 /// assert!(family.has_metric(&h.primary_metric));
 ///
 /// // A compiled scene's getters read its header.
-/// let mut p = (family.compile)(c, s).unwrap();
+/// let p = (family.compile)(c, s).unwrap();
 /// assert_eq!(p.header().inputs_sha256, h.inputs_sha256);
 /// assert!(std::ptr::eq(p.family(), family));
-/// p.header_mut().scene = "renamed".into();
-/// assert_eq!(p.scene(), "renamed");
+/// assert_eq!(p.scene(), "two_angles");
 /// ```
 #[derive(Debug, Clone)]
 pub struct SceneHeader {

@@ -45,6 +45,7 @@ pub mod header;
 pub mod matrix;
 pub mod reference_variant;
 
+use crate::run::Grid;
 pub use crate::run::Stepping;
 pub use header::SceneHeader;
 pub use matrix::{Cell, Entry, matrix};
@@ -256,15 +257,16 @@ pub struct Outcome {
 
 /// One compiled scene of a case, ready to run any of its family's variants.
 ///
-/// A family stores the scene's [`SceneHeader`] and gives it out through `header` and
-/// `header_mut`; the getters of the header's fields (`family` to `primary_metric`) are
-/// provided and read it. The grid's getters and `set_t_end` are the family's: the grid is
-/// part of its run setup, and a new horizon also invalidates what the family attached.
+/// A family stores the scene's [`SceneHeader`] and gives it out through `header`, and gives
+/// out the grid its runs step on through `grid`; the getters of the header's fields (`family`
+/// to `primary_metric`) and of the grid's (`t_end`, `score_every`, `sample_every`) are
+/// provided and read them. `set_t_end` is the family's: a new horizon also invalidates what
+/// the family attached (its reference, and any other copy of the grid it keeps).
 pub trait Problem: Send + Sync {
     /// The scene's header: its family, names, hashes and primary metric.
     fn header(&self) -> &SceneHeader;
-    /// The header to edit (it labels the records; no run reads it).
-    fn header_mut(&mut self) -> &mut SceneHeader;
+    /// The time grid the family's runs step on (its run setup's: one copy).
+    fn grid(&self) -> &Grid;
     fn family(&self) -> &'static Family {
         self.header().family
     }
@@ -288,15 +290,20 @@ pub trait Problem: Send + Sync {
     fn primary_metric(&self) -> &str {
         &self.header().primary_metric
     }
-    /// The horizon (s, or the load parameter's end for a static scene): the `t_end` of the
-    /// grid the family's runs step on.
-    fn t_end(&self) -> f64;
+    /// The horizon (s, or the load parameter's end for a static scene).
+    fn t_end(&self) -> f64 {
+        self.grid().t_end
+    }
     /// Replaces the horizon (`--t-end`); errors against references are then absent.
     fn set_t_end(&mut self, t_end: f64);
     /// The score grid spacing (a `--t-end` must be a multiple of it).
-    fn score_every(&self) -> f64;
+    fn score_every(&self) -> f64 {
+        self.grid().score_every
+    }
     /// The sample spacing (at most `case::MAX_SAMPLES` samples per run).
-    fn sample_every(&self) -> f64;
+    fn sample_every(&self) -> f64 {
+        self.grid().sample_every
+    }
     /// The ladder (steps, or tolerances for an adaptive method) of a method in a tier.
     fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64];
     /// Why a registered variant does not apply to this scene, if it does not.

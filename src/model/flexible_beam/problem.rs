@@ -348,23 +348,14 @@ impl Problem for BeamProblem {
     fn header(&self) -> &SceneHeader {
         &self.header
     }
-    fn header_mut(&mut self) -> &mut SceneHeader {
-        &mut self.header
+    fn grid(&self) -> &Grid {
+        &self.setup.grid
     }
-    fn t_end(&self) -> f64 {
-        self.setup.grid.t_end
-    }
-    // The grid is the run setup's, not the header's (the runs step on it); the attached
+    // The attached
     // reference's times are the old grid's: dropped.
     fn set_t_end(&mut self, t_end: f64) {
         self.setup.grid.t_end = t_end;
         self.reference = None;
-    }
-    fn score_every(&self) -> f64 {
-        self.setup.grid.score_every
-    }
-    fn sample_every(&self) -> f64 {
-        self.setup.grid.sample_every
     }
     fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64] {
         if quick { &self.quick } else { &self.ladders }.for_method(info)

@@ -16,7 +16,7 @@ use crate::problem::{Columns, Outcome, Problem, SceneHeader, Stepping, Variant, 
 use super::reference::{self, Loaded};
 use crate::model::rigid_body::refgen;
 use crate::model::rigid_body::registry::{self, RigidSetup};
-use crate::run::Observe;
+use crate::run::{Grid, Observe};
 use crate::model::rigid_body::score::{self, ScoreContext};
 use crate::model::rigid_body::plan::ScenePlan;
 
@@ -74,24 +74,15 @@ impl Problem for RigidProblem {
     fn header(&self) -> &SceneHeader {
         &self.plan.header
     }
-    fn header_mut(&mut self) -> &mut SceneHeader {
-        &mut self.plan.header
+    fn grid(&self) -> &Grid {
+        &self.plan.setup.grid
     }
-    fn t_end(&self) -> f64 {
-        self.plan.setup.grid.t_end
-    }
-    // The grid is the run setup's, not the header's (the runs step on it), and the timing
-    // setup's copy moves with it; the attached reference's times are the old grid's: dropped.
+    // The timing setup's copy of the grid moves with it; the attached reference's times are
+    // the old grid's: dropped.
     fn set_t_end(&mut self, t_end: f64) {
         self.plan.setup.grid.t_end = t_end;
         self.timing.grid.t_end = t_end;
         self.reference = None;
-    }
-    fn score_every(&self) -> f64 {
-        self.plan.setup.grid.score_every
-    }
-    fn sample_every(&self) -> f64 {
-        self.plan.setup.grid.sample_every
     }
     fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64] {
         let l = if quick {
