@@ -43,12 +43,22 @@ pub fn path(root: &Path, case: &str, scene: &str) -> PathBuf {
 pub use crate::digest::sha256_hex;
 
 /// What the shared loader needs of a family's stored reference file.
+/// Its stamp (`case`, `scene`, `inputs_sha256`: the keys every stored reference carries) is
+/// read by the loader from the same file ([`Stamp`]), so a family's type need not expose it.
 pub trait Stored: serde::de::DeserializeOwned {
-    fn case(&self) -> &str;
-    fn scene(&self) -> &str;
-    fn inputs_sha256(&self) -> &str;
+    /// The score times the columns are given at (key `t`).
+    fn times(&self) -> &[f64];
     /// A message when the columns do not fit together (unequal or zero lengths).
     fn check_columns(&self) -> Result<(), String>;
+}
+
+/// The keys of every stored reference that say what it was made for: its case and scene,
+/// and the physics hash of the scene it was made from.
+#[derive(Debug, serde::Deserialize)]
+struct Stamp {
+    case: String,
+    scene: String,
+    inputs_sha256: String,
 }
 
 /// The reference's times are the scene's score times: `t_k = k score_every` for `k = 0..=n`,
@@ -122,37 +132,48 @@ pub fn load_as<R: Stored>(
             });
         }
     };
-    let reference: R = serde_json::from_slice(&bytes).map_err(|e| ReferenceError::Unreadable {
+    let unreadable = |message: String| ReferenceError::Unreadable {
         path: shown.clone(),
-        message: e.to_string(),
-    })?;
-    reference
-        .check_columns()
-        .map_err(|message| ReferenceError::Unreadable {
-            path: shown.clone(),
-            message,
-        })?;
-    if reference.case() != case || reference.scene() != scene {
-        return Err(ReferenceError::Unreadable {
-            path: shown,
-            message: format!(
-                "key `case`/`scene` is {}/{}, expected {case}/{scene}",
-                reference.case(),
-                reference.scene()
-            ),
-        });
+        message,
+    };
+    let reference: R = serde_json::from_slice(&bytes).map_err(|e| unreadable(e.to_string()))?;
+    let stamp: Stamp = serde_json::from_slice(&bytes).map_err(|e| unreadable(e.to_string()))?;
+    reference.check_columns().map_err(unreadable)?;
+    if stamp.case != case || stamp.scene != scene {
+        return Err(unreadable(format!(
+            "key `case`/`scene` is {}/{}, expected {case}/{scene}",
+            stamp.case, stamp.scene
+        )));
     }
-    if reference.inputs_sha256() != inputs_sha256 {
+    if stamp.inputs_sha256 != inputs_sha256 {
         return Err(ReferenceError::Stale {
             path: shown,
             case: case.into(),
             scene: scene.into(),
-            stored: reference.inputs_sha256().to_string(),
+            stored: stamp.inputs_sha256,
             current: inputs_sha256.into(),
         });
     }
     let sha = sha256_hex(&bytes);
     Ok((reference, sha))
+}
+
+/// A scene's reference as a family attaches it: [`load_as`] under the scene's names and
+/// physics hash, then its times checked against the scene's score grid ([`check_grid`], the
+/// error naming the file through [`grid_error`]); every error as one line.
+pub fn attach<R: Stored>(
+    root: &Path,
+    case: &str,
+    scene: &str,
+    inputs_sha256: &str,
+    t_end: f64,
+    score_every: f64,
+) -> Result<(R, String), String> {
+    let (r, sha): (R, String) =
+        load_as(root, case, scene, inputs_sha256).map_err(|e| e.to_string())?;
+    check_grid(r.times(), t_end, score_every)
+        .map_err(|m| grid_error(root, case, scene, m).to_string())?;
+    Ok((r, sha))
 }
 
 /// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).

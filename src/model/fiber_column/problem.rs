@@ -182,8 +182,7 @@ impl Problem for FiberProblem {
     fn grid(&self) -> &Grid {
         &self.setup.grid
     }
-    // The attached
-    // reference's times are the old grid's: dropped.
+    // The attached reference's times are the old grid's: dropped.
     fn set_t_end(&mut self, t_end: f64) {
         self.setup.grid.t_end = t_end;
         self.reference = None;
@@ -244,14 +243,15 @@ impl Problem for FiberProblem {
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
         if matches!(self.loading(), Loading::TipForce(_) | Loading::TipMoment(_)) {
-            let h = &self.header;
-            let (r, sha): (ExactReference, String) =
-                reference::load_as(root, &h.case, &h.scene, &h.inputs_sha256)
-                    .map_err(|e| e.to_string())?;
-            let g = &self.setup.grid;
-            reference::check_grid(&r.t, g.t_end, g.score_every).map_err(|m| {
-                reference::grid_error(root, &h.case, &h.scene, m).to_string()
-            })?;
+            let (h, g) = (&self.header, &self.setup.grid);
+            let (r, sha): (ExactReference, String) = reference::attach(
+                root,
+                &h.case,
+                &h.scene,
+                &h.inputs_sha256,
+                g.t_end,
+                g.score_every,
+            )?;
             self.reference = Some(Attached::Exact(Box::new(r), sha));
         } else {
             self.reference = Some(Attached::External(Box::new(self.external(root)?)));

@@ -83,14 +83,8 @@ pub struct ExactReference {
 }
 
 impl Stored for ExactReference {
-    fn case(&self) -> &str {
-        &self.case
-    }
-    fn scene(&self) -> &str {
-        &self.scene
-    }
-    fn inputs_sha256(&self) -> &str {
-        &self.inputs_sha256
+    fn times(&self) -> &[f64] {
+        &self.t
     }
     fn check_columns(&self) -> Result<(), String> {
         reference::columns_fit(

@@ -351,8 +351,7 @@ impl Problem for BeamProblem {
     fn grid(&self) -> &Grid {
         &self.setup.grid
     }
-    // The attached
-    // reference's times are the old grid's: dropped.
+    // The attached reference's times are the old grid's: dropped.
     fn set_t_end(&mut self, t_end: f64) {
         self.setup.grid.t_end = t_end;
         self.reference = None;
@@ -364,14 +363,15 @@ impl Problem for BeamProblem {
         None
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
-        let h = &self.header;
-        let (r, sha): (BeamReference, String) =
-            reference::load_as(root, &h.case, &h.scene, &h.inputs_sha256)
-                .map_err(|e| e.to_string())?;
-        let g = &self.setup.grid;
-        reference::check_grid(&r.t, g.t_end, g.score_every).map_err(|m| {
-            reference::grid_error(root, &h.case, &h.scene, m).to_string()
-        })?;
+        let (h, g) = (&self.header, &self.setup.grid);
+        let (r, sha): (BeamReference, String) = reference::attach(
+            root,
+            &h.case,
+            &h.scene,
+            &h.inputs_sha256,
+            g.t_end,
+            g.score_every,
+        )?;
         self.reference = Some((r, sha));
         Ok(())
     }

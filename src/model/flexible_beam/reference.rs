@@ -101,14 +101,8 @@ pub struct BeamReference {
 }
 
 impl Stored for BeamReference {
-    fn case(&self) -> &str {
-        &self.case
-    }
-    fn scene(&self) -> &str {
-        &self.scene
-    }
-    fn inputs_sha256(&self) -> &str {
-        &self.inputs_sha256
+    fn times(&self) -> &[f64] {
+        &self.t
     }
     fn check_columns(&self) -> Result<(), String> {
         reference::columns_fit(

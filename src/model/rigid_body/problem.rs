@@ -48,13 +48,19 @@ impl RigidProblem {
     /// The stored reference of the scene, its values valid (`Reference::check_columns`) and
     /// its times the scene's score times; errors name the file and key.
     fn load_reference(&self, root: &Path) -> Result<Loaded, String> {
-        let h = &self.plan.header;
-        let l = reference::load(root, &h.case, &h.scene, &h.inputs_sha256)
-            .map_err(|e| e.to_string())?;
-        let g = &self.plan.setup.grid;
-        crate::reference::check_grid(&l.reference.t, g.t_end, g.score_every)
-            .map_err(|m| crate::reference::grid_error(root, &h.case, &h.scene, m).to_string())?;
-        Ok(l)
+        let (h, g) = (&self.plan.header, &self.plan.setup.grid);
+        let (reference, file_sha256) = crate::reference::attach(
+            root,
+            &h.case,
+            &h.scene,
+            &h.inputs_sha256,
+            g.t_end,
+            g.score_every,
+        )?;
+        Ok(Loaded {
+            reference,
+            file_sha256,
+        })
     }
 }
 

@@ -73,14 +73,8 @@ pub struct Loaded {
 }
 
 impl Stored for Reference {
-    fn case(&self) -> &str {
-        &self.case
-    }
-    fn scene(&self) -> &str {
-        &self.scene
-    }
-    fn inputs_sha256(&self) -> &str {
-        &self.inputs_sha256
+    fn times(&self) -> &[f64] {
+        &self.t
     }
     fn check_columns(&self) -> Result<(), String> {
         columns_fit(

@@ -75,14 +75,8 @@ pub struct ChainReference {
 }
 
 impl Stored for ChainReference {
-    fn case(&self) -> &str {
-        &self.case
-    }
-    fn scene(&self) -> &str {
-        &self.scene
-    }
-    fn inputs_sha256(&self) -> &str {
-        &self.inputs_sha256
+    fn times(&self) -> &[f64] {
+        &self.t
     }
     fn check_columns(&self) -> Result<(), String> {
         reference::columns_fit(
@@ -187,8 +181,7 @@ impl Problem for ChainProblem {
     fn grid(&self) -> &Grid {
         &self.setup.grid
     }
-    // The attached
-    // reference's times are the old grid's: dropped.
+    // The attached reference's times are the old grid's: dropped.
     fn set_t_end(&mut self, t_end: f64) {
         self.setup.grid.t_end = t_end;
         self.reference = None;
@@ -200,14 +193,15 @@ impl Problem for ChainProblem {
         None
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
-        let h = &self.header;
-        let (r, sha): (ChainReference, String) =
-            reference::load_as(root, &h.case, &h.scene, &h.inputs_sha256)
-                .map_err(|e| e.to_string())?;
-        let g = &self.setup.grid;
-        reference::check_grid(&r.t, g.t_end, g.score_every).map_err(|m| {
-            reference::grid_error(root, &h.case, &h.scene, m).to_string()
-        })?;
+        let (h, g) = (&self.header, &self.setup.grid);
+        let (r, sha): (ChainReference, String) = reference::attach(
+            root,
+            &h.case,
+            &h.scene,
+            &h.inputs_sha256,
+            g.t_end,
+            g.score_every,
+        )?;
         self.reference = Some((r, sha));
         Ok(())
     }
