@@ -33,7 +33,8 @@
 //! down that line to zero stress); 0 at zero stress.
 //! Parameters: f'_c < 0, ε_c0 < 0, f'_c ≤ f_cu ≤ 0, ε_cu < ε_c0, all finite (OpenSees flips
 //! positive values to negative; we refuse them instead, so that a sign slip is loud).
-use super::{ParamError, Uniaxial, check, trapezoid};
+use super::history::{self, History, Law};
+use super::{ParamError, check};
 
 /// Parameters of [`Concrete01`] (SI, OpenSees' names and order; compression negative).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -51,7 +52,7 @@ pub struct Concrete01Params {
 
 /// One state: the point and the unloading line (smallest strain, zero-stress strain, slope).
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct State {
+pub(super) struct State {
     strain: f64,
     stress: f64,
     tangent: f64,
@@ -60,15 +61,19 @@ struct State {
     unload_slope: f64,
 }
 
+impl history::State for State {
+    fn point(&self) -> (f64, f64, f64) {
+        (self.strain, self.stress, self.tangent)
+    }
+}
+
 /// A Concrete01 fiber: parameters, committed and trial state, committed work.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Concrete01 {
     params: Concrete01Params,
     /// E_c0 = 2 f'_c / ε_c0.
     ec0: f64,
-    committed: State,
-    trial: State,
-    committed_work: f64,
+    history: History<State>,
 }
 
 impl Concrete01 {
@@ -118,9 +123,7 @@ impl Concrete01 {
         Ok(Self {
             params,
             ec0,
-            committed: virgin,
-            trial: virgin,
-            committed_work: 0.0,
+            history: History::new(virgin),
         })
     }
 
@@ -133,7 +136,7 @@ impl Concrete01 {
     /// branch, see the module doc).
     #[cfg(test)]
     pub(super) fn trial_unload_slope(&self) -> f64 {
-        self.trial.unload_slope
+        self.history.trial().unload_slope
     }
 
     /// The monotonic envelope (stress, tangent) at `strain` ≤ 0.
@@ -180,9 +183,15 @@ impl Concrete01 {
     }
 }
 
-impl Uniaxial for Concrete01 {
-    fn set_trial_strain(&mut self, strain: f64) -> (f64, f64) {
-        let c = self.committed;
+impl Law for Concrete01 {
+    type State = State;
+    fn history(&self) -> &History<State> {
+        &self.history
+    }
+    fn history_mut(&mut self) -> &mut History<State> {
+        &mut self.history
+    }
+    fn trial_state(&self, c: State, strain: f64) -> State {
         let mut t = c;
         if (strain - c.strain).abs() >= f64::EPSILON {
             t.strain = strain;
@@ -220,34 +229,13 @@ impl Uniaxial for Concrete01 {
                 }
             }
         }
-        self.trial = t;
-        (t.stress, t.tangent)
-    }
-    fn strain(&self) -> f64 {
-        self.trial.strain
-    }
-    fn stress(&self) -> f64 {
-        self.trial.stress
-    }
-    fn tangent(&self) -> f64 {
-        self.trial.tangent
+        t
     }
     fn initial_tangent(&self) -> f64 {
         self.ec0
     }
-    fn commit(&mut self) {
-        self.committed_work = self.work();
-        self.committed = self.trial;
-    }
-    fn revert_to_last_commit(&mut self) {
-        self.trial = self.committed;
-    }
-    fn work(&self) -> f64 {
-        let (c, t) = (self.committed, self.trial);
-        self.committed_work + trapezoid(c.strain, c.stress, t.strain, t.stress)
-    }
     fn recoverable_energy(&self) -> f64 {
-        let t = self.trial;
+        let t = self.history.trial();
         if t.stress == 0.0 || t.unload_slope <= 0.0 {
             0.0
         } else {

@@ -37,7 +37,8 @@
 //! no concrete), E_ts > 0, all finite (OpenSees flips positive compressive values; we refuse
 //! them), and ε_R > 0, i.e. λ > f_cu/(E_c0 ε_cu): OpenSees accepts ε_R ≤ 0, but then E_r changes
 //! sign (and divides by zero) once ε_min passes ε_R, which we refuse rather than reproduce.
-use super::{ParamError, Uniaxial, check, trapezoid};
+use super::history::{self, History, Law};
+use super::{ParamError, check};
 
 /// Parameters of [`Concrete02`] (SI, OpenSees' names and order; compression negative).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -61,7 +62,7 @@ pub struct Concrete02Params {
 
 /// One state: the point, the smallest strain reached and the largest tension excursion.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct State {
+pub(super) struct State {
     strain: f64,
     stress: f64,
     tangent: f64,
@@ -69,6 +70,12 @@ struct State {
     min_strain: f64,
     /// Δ, the largest tension strain beyond ε_pt reached (OpenSees' `dept`).
     tension_excursion: f64,
+}
+
+impl history::State for State {
+    fn point(&self) -> (f64, f64, f64) {
+        (self.strain, self.stress, self.tangent)
+    }
 }
 
 /// The reloading geometry of a smallest strain ε_min: its envelope stress σ_m, the
@@ -87,9 +94,7 @@ pub struct Concrete02 {
     ec0: f64,
     /// ε_R, the strain of Yassin's focal point R (its stress is E_c0 ε_R).
     eps_r: f64,
-    committed: State,
-    trial: State,
-    committed_work: f64,
+    history: History<State>,
 }
 
 impl Concrete02 {
@@ -173,9 +178,7 @@ impl Concrete02 {
             params,
             ec0,
             eps_r,
-            committed: virgin,
-            trial: virgin,
-            committed_work: 0.0,
+            history: History::new(virgin),
         })
     }
 
@@ -233,9 +236,15 @@ impl Concrete02 {
     }
 }
 
-impl Uniaxial for Concrete02 {
-    fn set_trial_strain(&mut self, strain: f64) -> (f64, f64) {
-        let c = self.committed;
+impl Law for Concrete02 {
+    type State = State;
+    fn history(&self) -> &History<State> {
+        &self.history
+    }
+    fn history_mut(&mut self) -> &mut History<State> {
+        &mut self.history
+    }
+    fn trial_state(&self, c: State, strain: f64) -> State {
         let mut t = c;
         let d_strain = strain - c.strain;
         if d_strain.abs() >= f64::EPSILON {
@@ -277,34 +286,13 @@ impl Uniaxial for Concrete02 {
                 }
             }
         }
-        self.trial = t;
-        (t.stress, t.tangent)
-    }
-    fn strain(&self) -> f64 {
-        self.trial.strain
-    }
-    fn stress(&self) -> f64 {
-        self.trial.stress
-    }
-    fn tangent(&self) -> f64 {
-        self.trial.tangent
+        t
     }
     fn initial_tangent(&self) -> f64 {
         self.ec0
     }
-    fn commit(&mut self) {
-        self.committed_work = self.work();
-        self.committed = self.trial;
-    }
-    fn revert_to_last_commit(&mut self) {
-        self.trial = self.committed;
-    }
-    fn work(&self) -> f64 {
-        let (c, t) = (self.committed, self.trial);
-        self.committed_work + trapezoid(c.strain, c.stress, t.strain, t.stress)
-    }
     fn recoverable_energy(&self) -> f64 {
-        let t = self.trial;
+        let t = self.history.trial();
         let s = t.stress;
         if s == 0.0 {
             return 0.0;

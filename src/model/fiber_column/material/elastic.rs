@@ -3,8 +3,10 @@
 //! the energy tests. Its tangent is E everywhere (exactly consistent), its recoverable energy
 //! is σ²/(2E) = E ε²/2 (E_unload = E) so that, up to the trapezoid rule's rounding, the
 //! dissipated energy is zero on every path. It has no failure mode beyond its parameter
-//! check (E finite and positive).
-use super::{ParamError, Uniaxial, check, trapezoid};
+//! check (E finite and positive). Its state is the bare point (ε, E ε, E): the trial's
+//! stress is evaluated once, when the trial is set.
+use super::history::{History, Law, Point};
+use super::{ParamError, check};
 
 /// Parameters of [`Elastic`] (SI): `e` the Young's modulus (Pa), finite and positive.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -14,13 +16,11 @@ pub struct ElasticParams {
     pub e: f64,
 }
 
-/// A linear elastic fiber: its committed and trial strain and the committed work.
+/// A linear elastic fiber: parameters, committed and trial point, committed work.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Elastic {
     params: ElasticParams,
-    committed_strain: f64,
-    trial_strain: f64,
-    committed_work: f64,
+    history: History<Point>,
 }
 
 impl Elastic {
@@ -36,11 +36,14 @@ impl Elastic {
     /// ```
     pub fn new(params: ElasticParams) -> Result<Self, ParamError> {
         check("Elastic", "e", params.e, params.e > 0.0, "positive")?;
+        let virgin = Point {
+            strain: 0.0,
+            stress: 0.0,
+            tangent: params.e,
+        };
         Ok(Self {
             params,
-            committed_strain: 0.0,
-            trial_strain: 0.0,
-            committed_work: 0.0,
+            history: History::new(virgin),
         })
     }
 
@@ -50,37 +53,27 @@ impl Elastic {
     }
 }
 
-impl Uniaxial for Elastic {
-    fn set_trial_strain(&mut self, strain: f64) -> (f64, f64) {
-        self.trial_strain = strain;
-        (self.stress(), self.params.e)
+impl Law for Elastic {
+    type State = Point;
+    fn history(&self) -> &History<Point> {
+        &self.history
     }
-    fn strain(&self) -> f64 {
-        self.trial_strain
+    fn history_mut(&mut self) -> &mut History<Point> {
+        &mut self.history
     }
-    fn stress(&self) -> f64 {
-        self.params.e * self.trial_strain
-    }
-    fn tangent(&self) -> f64 {
-        self.params.e
+    fn trial_state(&self, _committed: Point, strain: f64) -> Point {
+        let e = self.params.e;
+        Point {
+            strain,
+            stress: e * strain,
+            tangent: e,
+        }
     }
     fn initial_tangent(&self) -> f64 {
         self.params.e
     }
-    fn commit(&mut self) {
-        self.committed_work = self.work();
-        self.committed_strain = self.trial_strain;
-    }
-    fn revert_to_last_commit(&mut self) {
-        self.trial_strain = self.committed_strain;
-    }
-    fn work(&self) -> f64 {
-        let c = self.committed_strain;
-        let e = self.params.e;
-        self.committed_work + trapezoid(c, e * c, self.trial_strain, self.stress())
-    }
     fn recoverable_energy(&self) -> f64 {
-        let s = self.stress();
+        let s = self.history.trial().stress;
         s * s / (2.0 * self.params.e)
     }
 }

@@ -26,10 +26,19 @@
 //! curved ones; [`Uniaxial::recoverable_energy`] is `σ²/(2 E_unload)` with `E_unload` named by
 //! each model. A model fails where its source does: the constructors refuse parameters outside
 //! the ranges listed on each parameter struct (and every non-finite value) with a
-//! [`ParamError`] naming the parameter (its struct field, the case file's key), and the models assume strains of engineering size (|ε| ≪ 1).
+//! [`ParamError`] naming the parameter (its struct field, the case file's key), and the models
+//! assume strains of engineering size (|ε| ≪ 1).
+//!
+//! The bookkeeping behind these invariants is written once, in `history.rs`: a fiber's trial
+//! state, committed state and committed work, and the [`Uniaxial`] methods that set, read,
+//! commit and revert them or sum the work. Each model's file holds only what is its own: its
+//! parameters, its state's history variables and its constitutive law (the trial state as a
+//! function of the committed state and the strain, the initial tangent, the recoverable
+//! energy).
 mod concrete01;
 mod concrete02;
 mod elastic;
+mod history;
 mod steel01;
 mod steel02;
 
@@ -168,12 +177,6 @@ macro_rules! from_model {
     };
 }
 from_model!(Elastic, Concrete01, Concrete02, Steel01, Steel02);
-
-/// The trapezoid of one strain increment, `(σ_a + σ_b)(ε_b − ε_a)/2`, the unit of
-/// [`Uniaxial::work`].
-fn trapezoid(strain_a: f64, stress_a: f64, strain_b: f64, stress_b: f64) -> f64 {
-    0.5 * (stress_a + stress_b) * (strain_b - strain_a)
-}
 
 /// A parameter a constructor refuses: `key`, the field of the parameter struct (the case
 /// file's key, `c_r1`), and the message, which names the model and the parameter as

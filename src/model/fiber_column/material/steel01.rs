@@ -17,8 +17,10 @@
 //! trial branch (consistent), one-sided at the branch points. Like OpenSees, a trial strain
 //! within f64::EPSILON of the committed one returns the committed state. Recoverable energy:
 //! σ²/(2 E0), E_unload = E0, exact since unloading is elastic until the opposite asymptote.
-//! Parameters: f_y > 0, E0 > 0, 0 ≤ b < 1, all finite.
-use super::{ParamError, Uniaxial, check, trapezoid};
+//! Parameters: f_y > 0, E0 > 0, 0 ≤ b < 1, all finite. With isotropic hardening off the
+//! state needs no history variable: it is the bare point (strain, stress, tangent).
+use super::history::{History, Law, Point};
+use super::{ParamError, check};
 
 /// Parameters of [`Steel01`] (SI, OpenSees' names): yield stress, initial modulus and
 /// hardening ratio.
@@ -33,22 +35,11 @@ pub struct Steel01Params {
     pub b: f64,
 }
 
-/// The point (strain, stress, tangent) of one state; Steel01 with isotropic hardening off
-/// needs no other history variable.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct State {
-    strain: f64,
-    stress: f64,
-    tangent: f64,
-}
-
-/// A Steel01 fiber: parameters, committed and trial state, committed work.
+/// A Steel01 fiber: parameters, committed and trial point, committed work.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Steel01 {
     params: Steel01Params,
-    committed: State,
-    trial: State,
-    committed_work: f64,
+    history: History<Point>,
 }
 
 impl Steel01 {
@@ -69,16 +60,14 @@ impl Steel01 {
         check("Steel01", "fy", fy, fy > 0.0, "positive")?;
         check("Steel01", "e0", e0, e0 > 0.0, "positive")?;
         check("Steel01", "b", b, (0.0..1.0).contains(&b), "in [0, 1)")?;
-        let virgin = State {
+        let virgin = Point {
             strain: 0.0,
             stress: 0.0,
             tangent: e0,
         };
         Ok(Self {
             params,
-            committed: virgin,
-            trial: virgin,
-            committed_work: 0.0,
+            history: History::new(virgin),
         })
     }
 
@@ -88,12 +77,18 @@ impl Steel01 {
     }
 }
 
-impl Uniaxial for Steel01 {
-    fn set_trial_strain(&mut self, strain: f64) -> (f64, f64) {
-        let c = self.committed;
+impl Law for Steel01 {
+    type State = Point;
+    fn history(&self) -> &History<Point> {
+        &self.history
+    }
+    fn history_mut(&mut self) -> &mut History<Point> {
+        &mut self.history
+    }
+    fn trial_state(&self, c: Point, strain: f64) -> Point {
         let Steel01Params { fy, e0, b } = self.params;
         let d_strain = strain - c.strain;
-        self.trial = if d_strain.abs() > f64::EPSILON {
+        if d_strain.abs() > f64::EPSILON {
             let e_sh = b * e0;
             let hardening = e_sh * strain;
             let half_band = fy * (1.0 - b);
@@ -110,41 +105,20 @@ impl Uniaxial for Steel01 {
             } else {
                 e_sh
             };
-            State {
+            Point {
                 strain,
                 stress,
                 tangent,
             }
         } else {
             c
-        };
-        (self.trial.stress, self.trial.tangent)
-    }
-    fn strain(&self) -> f64 {
-        self.trial.strain
-    }
-    fn stress(&self) -> f64 {
-        self.trial.stress
-    }
-    fn tangent(&self) -> f64 {
-        self.trial.tangent
+        }
     }
     fn initial_tangent(&self) -> f64 {
         self.params.e0
     }
-    fn commit(&mut self) {
-        self.committed_work = self.work();
-        self.committed = self.trial;
-    }
-    fn revert_to_last_commit(&mut self) {
-        self.trial = self.committed;
-    }
-    fn work(&self) -> f64 {
-        let (c, t) = (self.committed, self.trial);
-        self.committed_work + trapezoid(c.strain, c.stress, t.strain, t.stress)
-    }
     fn recoverable_energy(&self) -> f64 {
-        let s = self.trial.stress;
+        let s = self.history.trial().stress;
         s * s / (2.0 * self.params.e0)
     }
 }

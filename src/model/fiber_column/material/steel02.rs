@@ -30,7 +30,8 @@
 //! Parameters: f_y > 0, E0 > 0, 0 ≤ b < 1, R0 > 0, 0 < cR1 < 1 (so R stays positive however
 //! large ξ grows), cR2 > 0, all finite. The model is rate-free; it fails (ε_0 = ε_r, a zero
 //! division) only for parameters the constructor refuses.
-use super::{ParamError, Uniaxial, check, trapezoid};
+use super::history::{self, History, Law};
+use super::{ParamError, check};
 
 /// Parameters of [`Steel02`] (SI, OpenSees' names and order).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -60,7 +61,7 @@ enum Heading {
 
 /// One state: the point and the current branch with its strain memory.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct State {
+pub(super) struct State {
     strain: f64,
     stress: f64,
     tangent: f64,
@@ -78,13 +79,17 @@ struct State {
     sig_r: f64,
 }
 
+impl history::State for State {
+    fn point(&self) -> (f64, f64, f64) {
+        (self.strain, self.stress, self.tangent)
+    }
+}
+
 /// A Steel02 fiber: parameters, committed and trial state, committed work.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Steel02 {
     params: Steel02Params,
-    committed: State,
-    trial: State,
-    committed_work: f64,
+    history: History<State>,
 }
 
 impl Steel02 {
@@ -139,9 +144,7 @@ impl Steel02 {
         };
         Ok(Self {
             params,
-            committed: virgin,
-            trial: virgin,
-            committed_work: 0.0,
+            history: History::new(virgin),
         })
     }
 
@@ -151,8 +154,15 @@ impl Steel02 {
     }
 }
 
-impl Uniaxial for Steel02 {
-    fn set_trial_strain(&mut self, strain: f64) -> (f64, f64) {
+impl Law for Steel02 {
+    type State = State;
+    fn history(&self) -> &History<State> {
+        &self.history
+    }
+    fn history_mut(&mut self) -> &mut History<State> {
+        &mut self.history
+    }
+    fn trial_state(&self, c: State, strain: f64) -> State {
         let Steel02Params {
             fy,
             e0,
@@ -163,7 +173,6 @@ impl Uniaxial for Steel02 {
         } = self.params;
         let e_sh = b * e0;
         let eps_y = fy / e0;
-        let c = self.committed;
         let mut t = c;
         t.strain = strain;
         let d_strain = strain - c.strain;
@@ -172,8 +181,7 @@ impl Uniaxial for Steel02 {
             if d_strain.abs() < 10.0 * f64::EPSILON {
                 t.stress = 0.0;
                 t.tangent = e0;
-                self.trial = t;
-                return (t.stress, t.tangent);
+                return t;
             }
             // First loading: from the origin toward (±ε_y, ±f_y), ξ = 0.
             t.eps_max = eps_y;
@@ -225,34 +233,13 @@ impl Uniaxial for Steel02 {
         t.stress = normalized * (t.sig_0 - t.sig_r) + t.sig_r;
         let slope = b + (1.0 - b) / (base * root);
         t.tangent = slope * (t.sig_0 - t.sig_r) / (t.eps_0 - t.eps_r);
-        self.trial = t;
-        (t.stress, t.tangent)
-    }
-    fn strain(&self) -> f64 {
-        self.trial.strain
-    }
-    fn stress(&self) -> f64 {
-        self.trial.stress
-    }
-    fn tangent(&self) -> f64 {
-        self.trial.tangent
+        t
     }
     fn initial_tangent(&self) -> f64 {
         self.params.e0
     }
-    fn commit(&mut self) {
-        self.committed_work = self.work();
-        self.committed = self.trial;
-    }
-    fn revert_to_last_commit(&mut self) {
-        self.trial = self.committed;
-    }
-    fn work(&self) -> f64 {
-        let (c, t) = (self.committed, self.trial);
-        self.committed_work + trapezoid(c.strain, c.stress, t.strain, t.stress)
-    }
     fn recoverable_energy(&self) -> f64 {
-        let s = self.trial.stress;
+        let s = self.history.trial().stress;
         s * s / (2.0 * self.params.e0)
     }
 }
