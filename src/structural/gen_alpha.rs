@@ -45,10 +45,14 @@
 //! `rho_inf` only like `(h omega)^(-2/3)` (`1.5e-3` above it at `h omega = 1e4`, measured); resolved modes are slightly damped; Newton failures and non-finite states are
 //! `newton_failure` and `non_finite`.
 use super::SecondOrder;
+use super::method::Method;
 use super::newton::{self, NewtonOptions, Point};
 use super::state::State;
 pub use crate::integrate::gen_alpha_coefficients::Coefficients;
-use crate::integrate::{Failure, MethodInfo, Stats};
+use crate::integrate::{Failure, Stats};
+
+/// The method's name (`Method::NAME`), in its `info` and its failures.
+const NAME: &str = "gen_alpha";
 
 /// The generalized-alpha method (Arnold & Brüls form).
 ///
@@ -60,6 +64,7 @@ use crate::integrate::{Failure, MethodInfo, Stats};
 /// ```
 /// use mbdbench::integrate::Stats;
 /// use mbdbench::structural::gen_alpha::GenAlpha;
+/// use mbdbench::structural::method::Method;
 /// use mbdbench::structural::newton::NewtonOptions;
 /// use mbdbench::structural::state::State;
 /// use mbdbench::structural::SecondOrder;
@@ -88,7 +93,7 @@ use crate::integrate::{Failure, MethodInfo, Stats};
 /// }
 /// let energy = 0.5 * (st.q[0] * st.q[0] + st.v[0] * st.v[0]);
 /// assert!((energy - 0.5).abs() < 1e-3);
-/// assert_eq!(ga.info().name, "gen_alpha");
+/// assert_eq!(Method::<Oscillator>::info(&ga).name, "gen_alpha");
 /// ```
 #[derive(Debug, Clone)]
 pub struct GenAlpha {
@@ -115,25 +120,13 @@ impl GenAlpha {
     pub fn parameters(&self) -> Coefficients {
         self.c
     }
+}
 
-    /// The consistent initial acceleration (I1)/(I2) of `init` into `state.a` (`qdd_0`) and
-    /// `state.aux` (`a_0 = qdd_0`).
-    pub fn init<S: SecondOrder + ?Sized>(
-        &mut self,
-        sys: &S,
-        t0: f64,
-        state: &mut State,
-        stats: &mut Stats,
-    ) -> Result<(), Failure> {
-        super::init::acceleration(sys, t0, state, stats, "gen_alpha")
-    }
+impl<S: SecondOrder + ?Sized> Method<S> for GenAlpha {
+    const NAME: &'static str = NAME;
 
-    /// Advances `state` from `t` to `t + h` by (G1)-(G4). On failure `state` is unchanged.
-    ///
-    /// # Panics
-    ///
-    /// If `state` is not sized for `sys` (`State::for_system`).
-    pub fn step<S: SecondOrder + ?Sized>(
+    /// Advances `state` from `t` to `t + h` by (G1)-(G4).
+    fn step(
         &mut self,
         sys: &S,
         t: f64,
@@ -141,7 +134,7 @@ impl GenAlpha {
         state: &mut State,
         stats: &mut Stats,
     ) -> Result<(), Failure> {
-        newton::check_step(t, h, "gen_alpha")?;
+        newton::check_step(t, h, NAME)?;
         state.assert_sizes(sys.dim(), state.n_constraints());
         let (am, af, be, ga) = (self.c.alpha_m, self.c.alpha_f, self.c.beta, self.c.gamma);
         // a_{n+1} = (af qdd_n - am a_n)/(1 - am) + (1 - af)/(1 - am) qdd_{n+1}   (G3)
@@ -166,19 +159,9 @@ impl GenAlpha {
             scale: state.q.amax() + h * state.v.amax(),
             t_n: t,
         };
-        newton::solve_acceleration(sys, p, &self.newton, "gen_alpha", w, stats)?;
+        newton::solve_acceleration(sys, p, &self.newton, NAME, w, stats)?;
         w.aux1.axpy(ratio, &w.a1, 1.0);
-        for (x, what) in [(&w.q1, "q"), (&w.v1, "v"), (&w.a1, "a"), (&w.aux1, "aux")] {
-            newton::check_finite(x, t, "gen_alpha", what)?;
-        }
-        state.commit(false);
-        stats.steps += 1;
-        Ok(())
-    }
-
-    /// What the method is.
-    pub fn info(&self) -> MethodInfo {
-        newton::method_info("gen_alpha")
+        newton::accept(state, stats, t, NAME, false)
     }
 }
 

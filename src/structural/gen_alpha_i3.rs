@@ -45,10 +45,14 @@
 //! Where it fails: `rho_inf = 1` leaves the multipliers' oscillations undamped; redundant
 //! constraints make (C3) singular (`newton_failure`); non-finite states are `non_finite`.
 use super::Constraints;
+use super::method::Method;
 use super::newton::{self, NewtonOptions, check_finite, lu_failure, ratio};
 use super::state::State;
-use crate::integrate::{Failure, MethodInfo, Stats};
+use crate::integrate::{Failure, Stats};
 use crate::math::lu::LinearSolve;
+
+/// The method's name (`Method::NAME`), in its `info` and its failures.
+const NAME: &str = "gen_alpha_i3";
 
 /// The index-3 generalized-alpha method for constrained systems.
 ///
@@ -62,6 +66,7 @@ use crate::math::lu::LinearSolve;
 /// ```
 /// use mbdbench::integrate::Stats;
 /// use mbdbench::structural::gen_alpha_i3::GenAlphaI3;
+/// use mbdbench::structural::method::Method;
 /// use mbdbench::structural::newton::NewtonOptions;
 /// use mbdbench::structural::state::State;
 /// use mbdbench::structural::{Constraints, SecondOrder};
@@ -131,19 +136,6 @@ impl GenAlphaI3 {
         self.c
     }
 
-    /// Consistent `qdd_0` and `lambda_0` from (I3) of `init` (into `state.a`, `state.aux`
-    /// and `state.lambda`). `q_0` must satisfy `g(t_0, q_0) = 0` and `v_0` the hidden
-    /// constraint `G v_0 + g_t = 0`; they are not checked or projected.
-    pub fn init<S: Constraints + ?Sized>(
-        &mut self,
-        sys: &S,
-        t0: f64,
-        state: &mut State,
-        stats: &mut Stats,
-    ) -> Result<(), Failure> {
-        super::init::acceleration_constrained(sys, t0, state, stats, "gen_alpha_i3")
-    }
-
     /// `a_{n+1}`, `v_{n+1}`, `qdd_{n+1}` from `q_{n+1}` by (G1)-(G3), into the workspace.
     fn dependents(&self, h: f64, state: &mut State) {
         let (am, af, be, ga) = (self.c.alpha_m, self.c.alpha_f, self.c.beta, self.c.gamma);
@@ -164,14 +156,26 @@ impl GenAlphaI3 {
         w.a1.axpy(am / (1.0 - af), &state.aux, 1.0);
         w.a1.axpy(-af / (1.0 - af), &state.a, 1.0);
     }
+}
 
-    /// Advances `state` from `t` to `t + h` by (G1)-(G3), (C1)-(C3). On failure `state` is
-    /// unchanged.
-    ///
-    /// # Panics
-    ///
-    /// If `state` is not sized for `sys` (`State::for_constrained`).
-    pub fn step<S: Constraints + ?Sized>(
+impl<S: Constraints + ?Sized> Method<S> for GenAlphaI3 {
+    const NAME: &'static str = NAME;
+
+    /// Consistent `qdd_0` and `lambda_0` from (I3) of `init` (into `state.a`, `state.aux`
+    /// and `state.lambda`). `q_0` must satisfy `g(t_0, q_0) = 0` and `v_0` the hidden
+    /// constraint `G v_0 + g_t = 0`; they are not checked or projected.
+    fn init(
+        &mut self,
+        sys: &S,
+        t0: f64,
+        state: &mut State,
+        stats: &mut Stats,
+    ) -> Result<(), Failure> {
+        super::init::acceleration_constrained(sys, t0, state, stats, NAME)
+    }
+
+    /// Advances `state` from `t` to `t + h` by (G1)-(G3), (C1)-(C3).
+    fn step(
         &mut self,
         sys: &S,
         t: f64,
@@ -179,7 +183,6 @@ impl GenAlphaI3 {
         state: &mut State,
         stats: &mut Stats,
     ) -> Result<(), Failure> {
-        const NAME: &str = "gen_alpha_i3";
         newton::check_step(t, h, NAME)?;
         let (n, m) = (sys.dim(), sys.n_constraints());
         state.assert_sizes(n, m);
@@ -256,24 +259,12 @@ impl GenAlphaI3 {
             return Err(newton::newton_failure(t, NAME, &self.newton));
         }
         self.dependents(h, state);
-        let w = &state.work;
-        for (x, what) in [
-            (&w.q1, "q"),
-            (&w.v1, "v"),
-            (&w.a1, "a"),
-            (&w.aux1, "aux"),
-            (&w.lambda1, "lambda"),
-        ] {
-            check_finite(x, t, NAME, what)?;
-        }
-        state.commit(true);
-        stats.steps += 1;
-        Ok(())
+        newton::accept(state, stats, t, NAME, true)
     }
 
-    /// What the method is.
-    pub fn info(&self) -> MethodInfo {
-        newton::method_info("gen_alpha_i3")
+    /// A state with room for the multipliers (`State::for_constrained`).
+    fn new_state(&self, sys: &S) -> State {
+        State::for_constrained(sys)
     }
 }
 

@@ -38,9 +38,13 @@
 //! coordinates' `q_{n+1}` satisfy it only to `O(h^2)`; Newton failures and non-finite
 //! states are `newton_failure` and `non_finite`.
 use super::SecondOrder;
+use super::method::Method;
 use super::newton::{self, NewtonOptions, Point};
 use super::state::State;
-use crate::integrate::{Failure, MethodInfo, Stats};
+use crate::integrate::{Failure, Stats};
+
+/// The method's name (`Method::NAME`), in its `info` and its failures.
+const NAME: &str = "hht";
 
 /// The HHT alpha method.
 ///
@@ -53,6 +57,7 @@ use crate::integrate::{Failure, MethodInfo, Stats};
 /// ```
 /// use mbdbench::integrate::Stats;
 /// use mbdbench::structural::hht::Hht;
+/// use mbdbench::structural::method::Method;
 /// use mbdbench::structural::newton::NewtonOptions;
 /// use mbdbench::structural::state::State;
 /// use mbdbench::structural::SecondOrder;
@@ -119,25 +124,13 @@ impl Hht {
     pub fn rho_inf(&self) -> f64 {
         (1.0 + self.alpha) / (1.0 - self.alpha)
     }
+}
 
-    /// The consistent initial acceleration (I1)/(I2) of `init` into `state.a` and
-    /// `state.aux`.
-    pub fn init<S: SecondOrder + ?Sized>(
-        &mut self,
-        sys: &S,
-        t0: f64,
-        state: &mut State,
-        stats: &mut Stats,
-    ) -> Result<(), Failure> {
-        super::init::acceleration(sys, t0, state, stats, "hht")
-    }
+impl<S: SecondOrder + ?Sized> Method<S> for Hht {
+    const NAME: &'static str = NAME;
 
-    /// Advances `state` from `t` to `t + h` by (H1)-(H3). On failure `state` is unchanged.
-    ///
-    /// # Panics
-    ///
-    /// If `state` is not sized for `sys` (`State::for_system`).
-    pub fn step<S: SecondOrder + ?Sized>(
+    /// Advances `state` from `t` to `t + h` by (H1)-(H3).
+    fn step(
         &mut self,
         sys: &S,
         t: f64,
@@ -145,7 +138,7 @@ impl Hht {
         state: &mut State,
         stats: &mut Stats,
     ) -> Result<(), Failure> {
-        newton::check_step(t, h, "hht")?;
+        newton::check_step(t, h, NAME)?;
         state.assert_sizes(sys.dim(), state.n_constraints());
         let (al, be, ga) = (self.alpha, self.beta, self.gamma);
         let w1 = 1.0 + al;
@@ -164,7 +157,7 @@ impl Hht {
             scale: state.q.amax() + h * state.v.amax(),
             t_n: t,
         };
-        newton::solve_acceleration(sys, p, &self.newton, "hht", w, stats)?;
+        newton::solve_acceleration(sys, p, &self.newton, NAME, w, stats)?;
         // q_{n+1}, v_{n+1} from (H1)-(H2) (w.q1, w.v1 held the evaluation point).
         w.q1.copy_from(&state.q);
         w.q1.axpy(h, &state.v, 1.0);
@@ -174,17 +167,7 @@ impl Hht {
         w.v1.axpy(h * (1.0 - ga), &state.a, 1.0);
         w.v1.axpy(h * ga, &w.a1, 1.0);
         w.aux1.copy_from(&w.a1);
-        for (x, what) in [(&w.q1, "q"), (&w.v1, "v"), (&w.a1, "a")] {
-            newton::check_finite(x, t, "hht", what)?;
-        }
-        state.commit(false);
-        stats.steps += 1;
-        Ok(())
-    }
-
-    /// What the method is.
-    pub fn info(&self) -> MethodInfo {
-        newton::method_info("hht")
+        newton::accept(state, stats, t, NAME, false)
     }
 }
 

@@ -1,16 +1,23 @@
 //! One interface over the structural integrators, so that a family's run loop is written once
 //! and monomorphised per method (static dispatch, no allocation per step): [`Method`] for
-//! systems of type `S`, implemented by `Newmark`, `Hht` and `GenAlpha` for every
-//! [`SecondOrder`] system and by `GenAlphaI3` for every [`Constraints`] system. Each call
-//! delegates to the method's own `init`, `step` and `info` (their equations and orders are in
-//! their files); on failure the state is unchanged.
-use super::gen_alpha::GenAlpha;
-use super::gen_alpha_i3::GenAlphaI3;
-use super::hht::Hht;
-use super::newmark::Newmark;
+//! systems of type `S`, implemented in their own files by `Newmark`, `Hht` and `GenAlpha` for
+//! every [`SecondOrder`] system and by `GenAlphaI3` for every [`Constraints`] system.
+//!
+//! Each method writes its `NAME` and its `step` (the equations and orders are in its file,
+//! the checks that open and close a step in `newton`); what the four share beyond that is
+//! written here once, as provided methods: `init` is the consistent start (I1)/(I2) of
+//! `init.rs` under the method's name, `info` the facts of the family, and `new_state` a
+//! state without multipliers. The constrained method overrides `init` (the start (I3),
+//! which also fixes the multipliers) and `new_state` (room for them). On failure the state
+//! is unchanged.
+//!
+//! `init` and `step` of a concrete method need this trait in scope; where nothing names the
+//! system (a method's `info` alone) the call names it, as `Method::<Fe>::info(&m)`.
+//!
+//! [`Constraints`]: super::Constraints
+use super::SecondOrder;
 use super::state::State;
-use super::{Constraints, SecondOrder};
-use crate::integrate::{Failure, MethodInfo, Stats};
+use crate::integrate::{Failure, MethodInfo, MethodKind, Stats};
 
 /// A structural integrator for systems of type `S`.
 ///
@@ -37,17 +44,34 @@ use crate::integrate::{Failure, MethodInfo, Stats};
 /// # }
 /// let m = Newmark::new(NewtonOptions::default()).unwrap();
 /// assert_eq!(order::<Unit, _>(&m), 2);
+/// assert_eq!(Method::<Unit>::info(&m).name, "newmark");
 /// ```
-pub trait Method<S: ?Sized> {
+pub trait Method<S: SecondOrder + ?Sized> {
+    /// The method's name, in its `info` and in its failures.
+    const NAME: &'static str;
+
     /// Consistent initial accelerations (and multipliers) at `t0` from `state.q`, `state.v`.
+    /// Provided: (I1)/(I2) of `init.rs` into `state.a` and `state.aux` (`a_0 = qdd_0`); the
+    /// constrained method solves (I3) instead.
+    ///
+    /// # Panics
+    ///
+    /// If `state` is not sized for `sys` ([`Method::new_state`]).
     fn init(
         &mut self,
         sys: &S,
         t0: f64,
         state: &mut State,
         stats: &mut Stats,
-    ) -> Result<(), Failure>;
-    /// One step from `t` to `t + h`.
+    ) -> Result<(), Failure> {
+        super::init::acceleration(sys, t0, state, stats, Self::NAME)
+    }
+
+    /// One step from `t` to `t + h`; on failure `state` is unchanged.
+    ///
+    /// # Panics
+    ///
+    /// If `state` is not sized for `sys` ([`Method::new_state`]).
     fn step(
         &mut self,
         sys: &S,
@@ -56,46 +80,28 @@ pub trait Method<S: ?Sized> {
         state: &mut State,
         stats: &mut Stats,
     ) -> Result<(), Failure>;
-    /// What the method is.
-    fn info(&self) -> MethodInfo;
-    /// A state sized for `sys` (with multipliers for a constrained method).
-    fn new_state(&self, sys: &S) -> State;
-}
 
-/// `Method<S>` for a method whose own `init`, `step` and `info` take every `S` with the
-/// bound `$bound`, and whose state has the multipliers `$state` makes room for.
-macro_rules! method {
-    ($t:ty, $bound:path, $state:ident) => {
-        impl<S: $bound + ?Sized> Method<S> for $t {
-            fn init(
-                &mut self,
-                sys: &S,
-                t0: f64,
-                state: &mut State,
-                stats: &mut Stats,
-            ) -> Result<(), Failure> {
-                <$t>::init(self, sys, t0, state, stats)
-            }
-            fn step(
-                &mut self,
-                sys: &S,
-                t: f64,
-                h: f64,
-                state: &mut State,
-                stats: &mut Stats,
-            ) -> Result<(), Failure> {
-                <$t>::step(self, sys, t, h, state, stats)
-            }
-            fn info(&self) -> MethodInfo {
-                <$t>::info(self)
-            }
-            fn new_state(&self, sys: &S) -> State {
-                State::$state(sys)
-            }
+    /// What the method is. Provided, the same for the four but for the name: order 2, one
+    /// implicit stage, neither symplectic nor energy-conserving in general (Newmark conserves
+    /// a linear system's energy only), fixed step, of kind `structural`.
+    fn info(&self) -> MethodInfo {
+        MethodInfo {
+            name: Self::NAME,
+            order: 2,
+            stages: 1,
+            implicit: true,
+            symplectic: false,
+            lie_group: false,
+            energy_conserving: false,
+            adaptive: false,
+            kind: MethodKind::Structural,
+            twin_of: None,
         }
-    };
+    }
+
+    /// A state sized for `sys`. Provided: without multipliers (`State::for_system`); the
+    /// constrained method makes room for them.
+    fn new_state(&self, sys: &S) -> State {
+        State::for_system(sys)
+    }
 }
-method!(Newmark, SecondOrder, for_system);
-method!(Hht, SecondOrder, for_system);
-method!(GenAlpha, SecondOrder, for_system);
-method!(GenAlphaI3, Constraints, for_constrained);

@@ -22,9 +22,11 @@
 //! Where it fails: a system whose `S` is singular for every step (a massless, unloaded
 //! coordinate with no stiffness) makes every implicit method report a `newton_failure`.
 //!
-//! The integrators (one file each; every one a struct with a validating constructor, an
-//! `init` for consistent initial accelerations, a `step(sys, t, h, state, stats)` and an
-//! `info()`, all on the preallocated [`state::State`]):
+//! The integrators (one file each; every one a struct with a validating constructor and its
+//! parameters, and there its implementation of the one interface [`method::Method`]: its
+//! `step(sys, t, h, state, stats)` on the preallocated [`state::State`], while `init` for
+//! consistent initial accelerations, `info()` and `new_state` are the trait's, written once,
+//! where the methods agree):
 //!
 //! - [`newmark::Newmark`]: average acceleration (`beta = 1/4`, `gamma = 1/2`), order 2, no
 //!   numerical dissipation, conserves the energy of linear systems;

@@ -26,12 +26,15 @@
 //! stability (the reason for energy-momentum methods). A Newton that does not converge is a
 //! `newton_failure`, a non-finite state `non_finite`.
 use super::SecondOrder;
+use super::method::Method;
 use super::newton::{self, NewtonOptions, Point};
 use super::state::State;
-use crate::integrate::{Failure, MethodInfo, Stats};
+use crate::integrate::{Failure, Stats};
 
 const BETA: f64 = 0.25;
 const GAMMA: f64 = 0.5;
+/// The method's name (`Method::NAME`), in its `info` and its failures.
+const NAME: &str = "newmark";
 
 /// Newmark's average-acceleration method.
 ///
@@ -43,6 +46,7 @@ const GAMMA: f64 = 0.5;
 ///
 /// ```
 /// use mbdbench::integrate::Stats;
+/// use mbdbench::structural::method::Method;
 /// use mbdbench::structural::newmark::Newmark;
 /// use mbdbench::structural::newton::NewtonOptions;
 /// use mbdbench::structural::state::State;
@@ -73,7 +77,7 @@ const GAMMA: f64 = 0.5;
 /// assert!((energy - 0.5).abs() < 1e-13);
 /// assert!((st.q[0] - 1.0).abs() > 0.1);
 /// assert_eq!(stats.steps, 200);
-/// assert_eq!(nm.info().order, 2);
+/// assert_eq!(Method::<Oscillator>::info(&nm).order, 2);
 /// ```
 #[derive(Debug, Clone)]
 pub struct Newmark {
@@ -91,25 +95,13 @@ impl Newmark {
     pub fn parameters(&self) -> (f64, f64) {
         (BETA, GAMMA)
     }
+}
 
-    /// The consistent initial acceleration (I1)/(I2) of `init` into `state.a` and
-    /// `state.aux`.
-    pub fn init<S: SecondOrder + ?Sized>(
-        &mut self,
-        sys: &S,
-        t0: f64,
-        state: &mut State,
-        stats: &mut Stats,
-    ) -> Result<(), Failure> {
-        super::init::acceleration(sys, t0, state, stats, "newmark")
-    }
+impl<S: SecondOrder + ?Sized> Method<S> for Newmark {
+    const NAME: &'static str = NAME;
 
-    /// Advances `state` from `t` to `t + h` by (NM1)-(NM3). On failure `state` is unchanged.
-    ///
-    /// # Panics
-    ///
-    /// If `state` is not sized for `sys` (`State::for_system`).
-    pub fn step<S: SecondOrder + ?Sized>(
+    /// Advances `state` from `t` to `t + h` by (NM1)-(NM3).
+    fn step(
         &mut self,
         sys: &S,
         t: f64,
@@ -117,7 +109,7 @@ impl Newmark {
         state: &mut State,
         stats: &mut Stats,
     ) -> Result<(), Failure> {
-        newton::check_step(t, h, "newmark")?;
+        newton::check_step(t, h, NAME)?;
         state.assert_sizes(sys.dim(), state.n_constraints());
         let w = &mut state.work;
         w.qe.copy_from(&state.q);
@@ -133,19 +125,9 @@ impl Newmark {
             scale: state.q.amax() + h * state.v.amax(),
             t_n: t,
         };
-        newton::solve_acceleration(sys, p, &self.newton, "newmark", w, stats)?;
+        newton::solve_acceleration(sys, p, &self.newton, NAME, w, stats)?;
         w.aux1.copy_from(&w.a1);
-        for (x, what) in [(&w.q1, "q"), (&w.v1, "v"), (&w.a1, "a")] {
-            newton::check_finite(x, t, "newmark", what)?;
-        }
-        state.commit(false);
-        stats.steps += 1;
-        Ok(())
-    }
-
-    /// What the method is.
-    pub fn info(&self) -> MethodInfo {
-        newton::method_info("newmark")
+        newton::accept(state, stats, t, NAME, false)
     }
 }
 

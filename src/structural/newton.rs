@@ -1,6 +1,6 @@
 //! `newton`: the Newton iteration the unconstrained Newmark-family integrators share, its
-//! stopping rule and options, and the checks every structural step makes (a valid step size,
-//! a finite result).
+//! stopping rule and options, and what opens and closes every structural step (a valid step
+//! size; a finite result, which then becomes the state: `accept`).
 //!
 //! Newmark (Newmark 1959), HHT (Hilber, Hughes & Taylor 1977) and the generalized-alpha
 //! method in Arnold & Brüls' form (2007) all reduce one step to one nonlinear equation in an
@@ -30,7 +30,7 @@
 use nalgebra::DVector;
 
 use super::SecondOrder;
-use super::state::Work;
+use super::state::{State, Work};
 use crate::integrate::{Failure, FailureKind, Stats};
 use crate::math::lu::{LinearSolve, LuError};
 
@@ -105,6 +105,28 @@ pub(crate) fn lu_failure(e: LuError, t: f64, method: &str) -> Failure {
         }
     };
     Failure::new(kind, t, format!("{method}: iteration matrix: {e}"))
+}
+
+/// Ends a step from `t` whose trial values are in the workspace: a `non_finite` failure
+/// naming the first of them that is not finite (`q`, `v`, `a`, `aux`, then `lambda` when
+/// `with_lambda`), the state left at `t`; otherwise they become the state
+/// (`State::commit`) and the step is counted.
+pub(crate) fn accept(
+    state: &mut State,
+    stats: &mut Stats,
+    t: f64,
+    method: &str,
+    with_lambda: bool,
+) -> Result<(), Failure> {
+    let w = &state.work;
+    let trial = [(&w.q1, "q"), (&w.v1, "v"), (&w.a1, "a"), (&w.aux1, "aux")];
+    let lambda = with_lambda.then_some((&w.lambda1, "lambda"));
+    for (x, what) in trial.into_iter().chain(lambda) {
+        check_finite(x, t, method, what)?;
+    }
+    state.commit(with_lambda);
+    stats.steps += 1;
+    Ok(())
 }
 
 /// A `non_finite` failure unless every component of `x` is finite.
@@ -211,24 +233,6 @@ pub(crate) fn newton_failure(t: f64, method: &str, opts: &NewtonOptions) -> Fail
             opts.tol, opts.max_iters
         ),
     )
-}
-
-/// The facts of a Newmark-family method named `name`: order 2, one implicit stage, neither
-/// symplectic nor energy-conserving in general (Newmark conserves a linear system's energy
-/// only), fixed step, of kind `structural`.
-pub(crate) fn method_info(name: &'static str) -> crate::integrate::MethodInfo {
-    crate::integrate::MethodInfo {
-        name,
-        order: 2,
-        stages: 1,
-        implicit: true,
-        symplectic: false,
-        lie_group: false,
-        energy_conserving: false,
-        adaptive: false,
-        kind: crate::integrate::MethodKind::Structural,
-        twin_of: None,
-    }
 }
 
 #[cfg(test)]

@@ -1,9 +1,11 @@
 //! Test systems and measurements shared by the structural integrators' tests: linear and
 //! nonlinear second-order systems with analytic tangents, an RK4 reference, the step-ladder
 //! order measurement, the numerical amplification matrix of a stiff oscillator, the
-//! massless-node chain and its reduced system, and the Cartesian pendulum.
+//! massless-node chain and its reduced system, and the Cartesian pendulum. The shared checks
+//! take any unconstrained method, as a `Method<dyn SecondOrder>`.
 use nalgebra::{DMatrix, DVector, Matrix4};
 
+use super::method::Method;
 use super::newton::NewtonOptions;
 use super::state::State;
 use super::{Constraints, SecondOrder};
@@ -24,12 +26,6 @@ pub(crate) fn cap_one() -> NewtonOptions {
         max_iters: 1,
     }
 }
-
-/// The unconstrained integrators behind one interface, for the shared checks: the public
-/// `method::Method` on trait objects.
-pub(crate) trait Method: super::method::Method<dyn SecondOrder> {}
-
-impl<T: super::method::Method<dyn SecondOrder>> Method for T {}
 
 /// `M a + C v + K q = 0` with constant matrices.
 pub(crate) struct Linear {
@@ -303,7 +299,10 @@ pub(crate) fn nonlinear_cases() -> Vec<Case> {
 pub(crate) const LADDER: [usize; 5] = [40, 80, 160, 320, 640];
 
 /// The errors `max(|q - q_ref|, |v - v_ref|)` at `t_end` on the ladder.
-pub(crate) fn ladder_errors<M: Method>(case: &Case, make: impl Fn() -> M) -> Vec<f64> {
+pub(crate) fn ladder_errors<M: Method<dyn SecondOrder>>(
+    case: &Case,
+    make: impl Fn() -> M,
+) -> Vec<f64> {
     let (qr, vr) = reference(&*case.sys, &case.q0, &case.v0, case.t_end, 40_000);
     LADDER
         .iter()
@@ -334,7 +333,7 @@ pub(crate) fn orders(errors: &[f64]) -> Vec<f64> {
 }
 
 /// Every observed order of every nonlinear case is within 0.25 of 2.
-pub(crate) fn check_order<M: Method>(make: impl Fn() -> M, name: &str) {
+pub(crate) fn check_order<M: Method<dyn SecondOrder>>(make: impl Fn() -> M, name: &str) {
     for case in nonlinear_cases() {
         let errors = ladder_errors(&case, &make);
         let p = orders(&errors);
@@ -356,12 +355,12 @@ pub(crate) fn check_order<M: Method>(make: impl Fn() -> M, name: &str) {
 /// The spectral radius of one step's amplification matrix on `q'' + q = 0` at `h = 1e4`
 /// (`h omega = 1e4`; `spectral_radius_at`), built column by column from steps of the unit states in the scaled
 /// variables `(q, h v, h^2 a, h^2 aux)`.
-pub(crate) fn spectral_radius<M: Method>(m: &mut M) -> f64 {
+pub(crate) fn spectral_radius<M: Method<dyn SecondOrder>>(m: &mut M) -> f64 {
     spectral_radius_at(m, 1e4)
 }
 
 /// The spectral radius of the amplification matrix on `q'' + q = 0` at `h omega = h`.
-pub(crate) fn spectral_radius_at<M: Method>(m: &mut M, h: f64) -> f64 {
+pub(crate) fn spectral_radius_at<M: Method<dyn SecondOrder>>(m: &mut M, h: f64) -> f64 {
     let sys = Linear::oscillator(1.0, 0.0, 1.0);
     let scale = [1.0, h, h * h, h * h];
     let mut amp = Matrix4::zeros();
@@ -450,7 +449,7 @@ impl SecondOrder for MasslessChain {
 /// Runs the massless chain and its reduced system with fresh methods from `make` for 400
 /// steps of 0.05 and returns the largest of: the mass's `q`, `v`, `a` against the reduced
 /// system's, and the node's distance from static equilibrium `x0 - share x1`.
-pub(crate) fn massless_vs_reduced<M: Method>(make: impl Fn() -> M) -> f64 {
+pub(crate) fn massless_vs_reduced<M: Method<dyn SecondOrder>>(make: impl Fn() -> M) -> f64 {
     let chain = MasslessChain {
         m: 1.0,
         k1: 3.0,
@@ -484,7 +483,7 @@ pub(crate) fn massless_vs_reduced<M: Method>(make: impl Fn() -> M) -> f64 {
 /// With a one-update cap, a step of a stiff Duffing oscillator (`h omega = 1`, strong cubic
 /// term) is a `newton_failure` at the step's start time, and leaves state and step count
 /// alone.
-pub(crate) fn newton_cap_check<M: Method>(m: &mut M) {
+pub(crate) fn newton_cap_check<M: Method<dyn SecondOrder>>(m: &mut M) {
     let sys = Duffing {
         m: 1.0,
         c: 0.0,
@@ -505,7 +504,7 @@ pub(crate) fn newton_cap_check<M: Method>(m: &mut M) {
 }
 
 /// A non-finite or non-positive step is a `non_finite` failure that leaves the state alone.
-pub(crate) fn bad_step_check<M: Method>(m: &mut M) {
+pub(crate) fn bad_step_check<M: Method<dyn SecondOrder>>(m: &mut M) {
     let sys = Linear::oscillator(1.0, 0.0, 1.0);
     let (mut st, mut stats) = (State::for_system(&sys), Stats::default());
     st.set(&[1.0], &[0.0]);

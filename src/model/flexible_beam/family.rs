@@ -290,12 +290,13 @@ fn fe_gen_alpha(s: &BeamSetup, st: Stepping, o: &Observe) -> Result<RunOutput<Be
     structural(s, st, o, &fe_model(s), GenAlpha::new(0.9, newton())?)
 }
 
+/// The structural methods' facts (the same on every formulation).
 fn infos() -> [(&'static str, MethodInfo); 3] {
     let o = newton();
     [
-        ("newmark", Newmark::new(o).expect("valid").info()),
-        ("hht", Hht::new(-0.05, o).expect("valid").info()),
-        ("gen_alpha", GenAlpha::new(0.9, o).expect("valid").info()),
+        ("newmark", Method::<Fe>::info(&Newmark::new(o).expect("valid"))),
+        ("hht", Method::<Fe>::info(&Hht::new(-0.05, o).expect("valid"))),
+        ("gen_alpha", Method::<Fe>::info(&GenAlpha::new(0.9, o).expect("valid"))),
     ]
 }
 
@@ -439,7 +440,7 @@ pub fn table() -> &'static [(Variant, RunFn)] {
             "implicit_midpoint" => ImplicitMidpoint]);
         rows!(ode rows, oi, "aigc_projection", ["rk4" => Rk4, "dopri5" => Dopri5,
             "dop853" => Dop853]);
-        let i3 = GenAlphaI3::new(0.9, newton()).expect("valid").info();
+        let i3 = Method::<Modal>::info(&GenAlphaI3::new(0.9, newton()).expect("valid"));
         rows.push(("gen_alpha_i3", "aigc_index3", i3, |s, st, o| {
             let build =
                 |base| Ok(formulations::model("aigc_index3", &s.numerics, s.scene.beam, base)?.0);

@@ -229,6 +229,7 @@ fn spin_up_tip(
 #[test]
 fn spin_up_stays_bounded_and_integrators_agree() {
     use crate::structural::gen_alpha::GenAlpha;
+    use crate::structural::method::Method;
     use crate::structural::newmark::Newmark;
     use crate::structural::newton::NewtonOptions;
     let fe = Fe::new(KANE, 10, Base::SpinUp { w: 4.0, t_up: 15.0 }).unwrap();

@@ -10,6 +10,7 @@ use super::fe::{Beam, Fe};
 use super::modal::{Basis, Bc, Field, Modal};
 use super::shapes::{Shape, clamped_free_root, composite_rule};
 use crate::integrate::Stats;
+use crate::structural::method::Method;
 use crate::structural::newmark::Newmark;
 use crate::structural::newton::NewtonOptions;
 use crate::structural::state::State;
