@@ -40,6 +40,13 @@ pub fn translation(g: &DualQuaternion<f64>) -> Vector3<f64> {
     (g.dual * g.real.conjugate()).imag() * 2.0
 }
 
+impl super::Translation for DualQuaternion<f64> {
+    #[inline(always)]
+    fn translation(&self) -> Vector3<f64> {
+        translation(self)
+    }
+}
+
 /// The `dual_quat` chart.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct DualQuat;
@@ -64,10 +71,6 @@ impl PoseChart for DualQuat {
     }
     fn quaternion(c: &Self::Coords) -> UnitQuaternion<f64> {
         so3::canonical(&UnitQuaternion::new_normalize(c.real))
-    }
-    #[inline(always)]
-    fn position(c: &Self::Coords) -> Vector3<f64> {
-        translation(c)
     }
     #[inline(always)]
     fn velocity(

@@ -176,10 +176,6 @@ macro_rules! euler_chart {
                 $rot(&c.rot)
             }
             #[inline(always)]
-            fn position(c: &Self::Coords) -> Vector3<f64> {
-                c.x
-            }
-            #[inline(always)]
             fn velocity(
                 c: &Self::Coords,
                 _r: &Matrix3<f64>,

@@ -91,10 +91,6 @@ macro_rules! matrix_chart {
                 c.rot
             }
             #[inline(always)]
-            fn position(c: &Self::Coords) -> Vector3<f64> {
-                c.x
-            }
-            #[inline(always)]
             fn velocity(
                 _c: &Self::Coords,
                 r: &Matrix3<f64>,

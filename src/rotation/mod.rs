@@ -45,7 +45,7 @@ pub trait PoseChart: Send + Sync + 'static {
     /// The variant name (stable snake_case: it appears in case files, records and bench ids).
     const NAME: &'static str;
     /// The stored numbers.
-    type Coords: Copy + Debug + Send + Sync;
+    type Coords: Copy + Debug + Send + Sync + Translation;
     /// The increment of the pose.
     type Tangent: Vector;
     /// Retract is a group action and `dexp_inv` is not the identity (RKMK applies).
@@ -66,7 +66,10 @@ pub trait PoseChart: Send + Sync + 'static {
         so3::quat_from_matrix(&Self::rotation(c))
     }
     /// The translation.
-    fn position(c: &Self::Coords) -> Vector3<f64>;
+    #[inline(always)]
+    fn position(c: &Self::Coords) -> Vector3<f64> {
+        c.translation()
+    }
     /// The pose velocity: coordinate rates (additive charts) or the trivialised velocity (Lie
     /// charts: body twist when `!spatial`, spatial twist when `spatial`), from the body angular
     /// velocity `omega_body` and the world velocity `xdot` of the translation. `r` is
@@ -164,6 +167,20 @@ macro_rules! for_each_chart {
 mod conformance;
 #[cfg(test)]
 mod conformance_rotation;
+
+/// Coordinates that carry a translation: every chart's, so `PoseChart::position` is written
+/// once (a `Pose` keeps it beside the rotation's numbers; a dual quaternion encodes it).
+pub trait Translation {
+    /// The translation (m, world).
+    fn translation(&self) -> Vector3<f64>;
+}
+
+impl<Q: Copy> Translation for Pose<Q> {
+    #[inline(always)]
+    fn translation(&self) -> Vector3<f64> {
+        self.x
+    }
+}
 
 /// Coordinates of a chart that keeps the translation as a separate additive R^3.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -82,10 +82,6 @@ macro_rules! quat_chart {
                 unit(&c.rot)
             }
             #[inline(always)]
-            fn position(c: &Self::Coords) -> Vector3<f64> {
-                c.x
-            }
-            #[inline(always)]
             fn velocity(
                 c: &Self::Coords,
                 _r: &Matrix3<f64>,

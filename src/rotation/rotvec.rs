@@ -45,10 +45,6 @@ impl PoseChart for RotVec {
         so3::exp(&c.rot)
     }
     #[inline(always)]
-    fn position(c: &Self::Coords) -> Vector3<f64> {
-        c.x
-    }
-    #[inline(always)]
     fn velocity(
         c: &Self::Coords,
         _r: &Matrix3<f64>,

@@ -48,10 +48,6 @@ impl PoseChart for Se3Hq {
         c.rot
     }
     #[inline(always)]
-    fn position(c: &Self::Coords) -> Vector3<f64> {
-        c.x
-    }
-    #[inline(always)]
     fn velocity(
         c: &Self::Coords,
         r: &Matrix3<f64>,

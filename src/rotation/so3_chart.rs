@@ -42,10 +42,6 @@ impl PoseChart for So3 {
         c.rot
     }
     #[inline(always)]
-    fn position(c: &Self::Coords) -> Vector3<f64> {
-        c.x
-    }
-    #[inline(always)]
     fn velocity(
         _c: &Self::Coords,
         r: &Matrix3<f64>,
