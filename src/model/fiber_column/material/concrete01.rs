@@ -191,6 +191,7 @@ impl Law for Concrete01 {
     fn history_mut(&mut self) -> &mut History<State> {
         &mut self.history
     }
+    #[inline]
     fn trial_state(&self, c: State, strain: f64) -> State {
         let mut t = c;
         if (strain - c.strain).abs() >= f64::EPSILON {

@@ -244,6 +244,7 @@ impl Law for Concrete02 {
     fn history_mut(&mut self) -> &mut History<State> {
         &mut self.history
     }
+    #[inline]
     fn trial_state(&self, c: State, strain: f64) -> State {
         let mut t = c;
         let d_strain = strain - c.strain;

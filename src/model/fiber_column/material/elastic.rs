@@ -61,6 +61,7 @@ impl Law for Elastic {
     fn history_mut(&mut self) -> &mut History<Point> {
         &mut self.history
     }
+    #[inline]
     fn trial_state(&self, _committed: Point, strain: f64) -> Point {
         let e = self.params.e;
         Point {

@@ -85,6 +85,7 @@ impl Law for Steel01 {
     fn history_mut(&mut self) -> &mut History<Point> {
         &mut self.history
     }
+    #[inline]
     fn trial_state(&self, c: Point, strain: f64) -> Point {
         let Steel01Params { fy, e0, b } = self.params;
         let d_strain = strain - c.strain;

@@ -162,6 +162,7 @@ impl Law for Steel02 {
     fn history_mut(&mut self) -> &mut History<State> {
         &mut self.history
     }
+    #[inline]
     fn trial_state(&self, c: State, strain: f64) -> State {
         let Steel02Params {
             fy,
