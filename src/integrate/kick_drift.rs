@@ -33,7 +33,8 @@ pub trait SplitMechanics: System
 where
     Self::State: Copy + PartialEq,
 {
-    /// What one force evaluation gives (the rigid body: the world force and torque).
+    /// What one force evaluation gives, in the frame the momenta are kept in (the rigid body:
+    /// the world force and the body-frame torque).
     type Force: Copy + Default;
     /// The step's variables: configuration and momenta as the free flow moves them.
     type Phase: Copy;
@@ -45,8 +46,9 @@ where
     /// produced `x`), else computed from the velocity of `x`.
     fn open(&self, x: &Self::State, carried: Option<&Self::Phase>) -> Self::Phase;
 
-    /// The kick `p <- p + s F`, by the force `f` evaluated at the configuration of `at`.
-    fn kick(&self, at: &Self::State, f: &Self::Force, p: &mut Self::Phase, s: f64);
+    /// The kick `p <- p + s F` by the force `f` (`force`'s value, in the frame the momenta
+    /// are kept in).
+    fn kick(&self, f: &Self::Force, p: &mut Self::Phase, s: f64);
 
     /// A state at the phase's configuration (its velocity need not be set): where the next
     /// force is evaluated.
@@ -92,8 +94,10 @@ where
 {
     flow: D,
     own: OwnState<S::State>,
-    /// The force of (K2) of the last step, and its closing phase.
-    end: Option<(S::Force, S::Phase)>,
+    /// The force of (K2) of the last step (read only when `own` recognises the state).
+    end_force: S::Force,
+    /// The closing phase of the last step, kept only for a flow that carries its momenta.
+    end_phase: Option<S::Phase>,
 }
 
 impl<S: SplitMechanics, D: FreeFlow<S>> KickDriftKick<S, D>
@@ -105,7 +109,8 @@ where
         KickDriftKick {
             flow,
             own: OwnState::default(),
-            end: None,
+            end_force: S::Force::default(),
+            end_phase: None,
         }
     }
 
@@ -141,18 +146,21 @@ where
         stats: &mut Stats,
     ) -> Result<(), Failure> {
         self.flow.prepare(sys, t)?;
-        let carried = if self.own.matches(s) { self.end } else { None };
-        let f0 = match &carried {
-            Some((f, _)) => *f,
-            None => {
-                stats.rhs_evals += 1;
-                sys.force(s)
-            }
+        let continuing = self.own.matches(s);
+        let f0 = if continuing {
+            self.end_force
+        } else {
+            stats.rhs_evals += 1;
+            sys.force(s)
         };
-        let momenta = carried.as_ref().filter(|_| D::CARRIES_MOMENTA);
-        let mut p = sys.open(s, momenta.map(|(_, p)| p));
+        let momenta = if D::CARRIES_MOMENTA && continuing {
+            self.end_phase.as_ref()
+        } else {
+            None
+        };
+        let mut p = sys.open(s, momenta);
         // (K1), (D).
-        sys.kick(s, &f0, &mut p, 0.5 * h);
+        sys.kick(&f0, &mut p, 0.5 * h);
         if let Err(e) = self.flow.drift(sys, &mut p, t, h, stats) {
             self.own.clear();
             return Err(e);
@@ -161,7 +169,7 @@ where
         let at = normalized(sys, &sys.configuration(&p));
         stats.rhs_evals += 1;
         let f1 = sys.force(&at);
-        sys.kick(&at, &f1, &mut p, 0.5 * h);
+        sys.kick(&f1, &mut p, 0.5 * h);
         let out = sys.close(&p);
         if let Err(e) = sys.check(t + h, &out) {
             self.own.clear();
@@ -174,7 +182,10 @@ where
         }
         *s = out;
         self.own.record(sys, s);
-        self.end = Some((f1, p));
+        self.end_force = f1;
+        if D::CARRIES_MOMENTA {
+            self.end_phase = Some(p);
+        }
         Ok(())
     }
 }
@@ -225,7 +236,7 @@ mod tests {
         fn open(&self, x: &St, carried: Option<&St>) -> St {
             St::new(x[0], x[1], carried.map_or(x[2], |p| p[2]))
         }
-        fn kick(&self, _at: &St, f: &f64, p: &mut St, s: f64) {
+        fn kick(&self, f: &f64, p: &mut St, s: f64) {
             p[2] += s * f;
         }
         fn configuration(&self, p: &St) -> St {

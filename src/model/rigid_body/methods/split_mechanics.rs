@@ -2,9 +2,10 @@
 //! kind of system `splitting` and `lgvi` advance: configuration `(R, x)` on SO(3) x R^3 in the
 //! `so3` chart, momenta the body angular momentum `Pi = J omega` and the world velocity `v`.
 //!
-//! - `force`: the world force and torque of the springs and gravity at `(R, x)`;
-//! - `kick`: `Pi <- Pi + s R^T tau`, `v <- v + s f / m` (`R` of the configuration the force
-//!   was evaluated at; a pinned body's translation stays frozen);
+//! - `force`: the world force `f` of the springs and gravity at `(R, x)` and their torque in
+//!   the body frame, `R^T tau` (the frame the momentum is kept in, so the kick needs no `R`);
+//! - `kick`: `Pi <- Pi + s R^T tau`, `v <- v + s f / m` (a pinned body's translation stays
+//!   frozen);
 //! - `close`: the body rate from the momentum, `omega = J^-1 Pi` refined once
 //!   (`body_momentum::omega_from_pi`), so that `J omega = Pi` to round-off.
 //!
@@ -38,7 +39,8 @@ impl SplitMechanics for RigidSystem<So3, Body> {
     #[inline(always)]
     fn force(&self, at: &So3State) -> Self::Force {
         let r = at.pose.rot.to_rotation_matrix().into_inner();
-        self.body.wrench(&r, &at.pose.x)
+        let (f, tau) = self.body.wrench(&r, &at.pose.x);
+        (f, r.transpose() * tau)
     }
 
     #[inline(always)]
@@ -53,9 +55,8 @@ impl SplitMechanics for RigidSystem<So3, Body> {
     }
 
     #[inline(always)]
-    fn kick(&self, at: &So3State, f: &Self::Force, p: &mut RigidPhase, s: f64) {
-        let r = at.pose.rot.to_rotation_matrix().into_inner();
-        p.pi += r.transpose() * f.1 * s;
+    fn kick(&self, f: &Self::Force, p: &mut RigidPhase, s: f64) {
+        p.pi += f.1 * s;
         if self.body.translates() {
             p.v += f.0 * (s / self.body.mass);
         }
@@ -114,10 +115,11 @@ mod tests {
         let f = sys.force(&x0);
         let mut p = sys.open(&x0, None);
         let p0 = p;
-        sys.kick(&x0, &f, &mut p, 0.25);
+        sys.kick(&f, &mut p, 0.25);
         let r = x0.pose.rot.to_rotation_matrix().into_inner();
-        assert!((p.pi - p0.pi - r.transpose() * f.1 * 0.25).amax() < 1e-14);
-        assert!((p.v - p0.v - f.0 * (0.25 / sys.body.mass)).amax() < 1e-14);
+        let (force, tau) = sys.body.wrench(&r, &x0.pose.x);
+        assert!((p.pi - p0.pi - r.transpose() * tau * 0.25).amax() < 1e-14);
+        assert!((p.v - p0.v - force * (0.25 / sys.body.mass)).amax() < 1e-14);
         assert_eq!((p.q, p.x), (p0.q, p0.x));
     }
 }

@@ -169,7 +169,14 @@ impl FreeFlow<RigidSystem<So3, Body>> for PrincipalRotor {
         h: f64,
         _stats: &mut Stats,
     ) -> Result<(), Failure> {
-        let ax = self.axes(&sys.body, t)?;
+        // `prepare` has checked the axes against this body before the step's first force.
+        let Some(ax) = self.axes else {
+            return Err(Failure::new(
+                FailureKind::NonFinite,
+                t,
+                "splitting: drift without principal axes",
+            ));
+        };
         if sys.body.translates() {
             p.x += p.v * h;
         }
