@@ -158,24 +158,6 @@ pub fn load_as<R: Stored>(
     Ok((reference, sha))
 }
 
-/// A scene's reference as a family attaches it: [`load_as`] under the scene's names and
-/// physics hash, then its times checked against the scene's score grid ([`check_grid`], the
-/// error naming the file through [`grid_error`]); every error as one line.
-pub fn attach<R: Stored>(
-    root: &Path,
-    case: &str,
-    scene: &str,
-    inputs_sha256: &str,
-    t_end: f64,
-    score_every: f64,
-) -> Result<(R, String), String> {
-    let (r, sha): (R, String) =
-        load_as(root, case, scene, inputs_sha256).map_err(|e| e.to_string())?;
-    check_grid(r.times(), t_end, score_every)
-        .map_err(|m| grid_error(root, case, scene, m).to_string())?;
-    Ok((r, sha))
-}
-
 /// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
 /// The temporary file is removed when writing or renaming fails (a full disk used to leave
 /// `*.tmp<pid>` behind) and on SIGINT (`output::interrupt`); those a killed process left

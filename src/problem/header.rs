@@ -16,8 +16,12 @@
 //! family's run functions read (its setup's `run::Grid`), and one copy of it, in the setup,
 //! is the one the steps are taken on. `Problem::grid` gives it out and `Problem::t_end` and
 //! its kin read it there.
+use std::path::Path;
+
 use super::Family;
 use crate::case::{Case, Scene};
+use crate::reference::{self, Stored};
+use crate::run::Grid;
 
 /// What names one compiled scene and stamps its records (the module's invariants hold).
 ///
@@ -70,5 +74,22 @@ impl SceneHeader {
             settings_sha256: scene.settings_sha256.clone(),
             primary_metric: case.primary_metric.clone(),
         }
+    }
+
+    /// The scene's stored reference as a family attaches it: `reference::load_as` under the
+    /// header's names and physics hash from `root`, then its times checked against `grid`'s
+    /// score times (`reference::check_grid`, the error naming the file); with the SHA-256 of
+    /// the file. Every error is one line.
+    pub fn load_reference<R: Stored>(
+        &self,
+        root: &Path,
+        grid: &Grid,
+    ) -> Result<(R, String), String> {
+        let (r, sha): (R, String) =
+            reference::load_as(root, &self.case, &self.scene, &self.inputs_sha256)
+                .map_err(|e| e.to_string())?;
+        reference::check_grid(r.times(), grid.t_end, grid.score_every)
+            .map_err(|m| reference::grid_error(root, &self.case, &self.scene, m).to_string())?;
+        Ok((r, sha))
     }
 }

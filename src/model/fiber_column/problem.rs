@@ -243,15 +243,8 @@ impl Problem for FiberProblem {
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
         if matches!(self.loading(), Loading::TipForce(_) | Loading::TipMoment(_)) {
-            let (h, g) = (&self.header, &self.setup.grid);
-            let (r, sha): (ExactReference, String) = reference::attach(
-                root,
-                &h.case,
-                &h.scene,
-                &h.inputs_sha256,
-                g.t_end,
-                g.score_every,
-            )?;
+            let (r, sha): (ExactReference, String) =
+                self.header.load_reference(root, &self.setup.grid)?;
             self.reference = Some(Attached::Exact(Box::new(r), sha));
         } else {
             self.reference = Some(Attached::External(Box::new(self.external(root)?)));

@@ -24,7 +24,6 @@ use crate::case::{Case, CaseError, Scene};
 use crate::integrate::{Limits, MethodInfo};
 use crate::metrics::Scores;
 use crate::problem::{Columns, Outcome, Problem, SceneHeader, Stepping, Variant, Want};
-use crate::reference;
 use crate::run::{Grid, Observe, RunOutput};
 use crate::case::Ladders;
 use crate::summary::Series;
@@ -363,15 +362,8 @@ impl Problem for BeamProblem {
         None
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
-        let (h, g) = (&self.header, &self.setup.grid);
-        let (r, sha): (BeamReference, String) = reference::attach(
-            root,
-            &h.case,
-            &h.scene,
-            &h.inputs_sha256,
-            g.t_end,
-            g.score_every,
-        )?;
+        let (r, sha): (BeamReference, String) =
+            self.header.load_reference(root, &self.setup.grid)?;
         self.reference = Some((r, sha));
         Ok(())
     }

@@ -48,15 +48,8 @@ impl RigidProblem {
     /// The stored reference of the scene, its values valid (`Reference::check_columns`) and
     /// its times the scene's score times; errors name the file and key.
     fn load_reference(&self, root: &Path) -> Result<Loaded, String> {
-        let (h, g) = (&self.plan.header, &self.plan.setup.grid);
-        let (reference, file_sha256) = crate::reference::attach(
-            root,
-            &h.case,
-            &h.scene,
-            &h.inputs_sha256,
-            g.t_end,
-            g.score_every,
-        )?;
+        let (reference, file_sha256) =
+            self.plan.header.load_reference(root, &self.plan.setup.grid)?;
         Ok(Loaded {
             reference,
             file_sha256,

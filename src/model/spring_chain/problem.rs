@@ -193,15 +193,8 @@ impl Problem for ChainProblem {
         None
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
-        let (h, g) = (&self.header, &self.setup.grid);
-        let (r, sha): (ChainReference, String) = reference::attach(
-            root,
-            &h.case,
-            &h.scene,
-            &h.inputs_sha256,
-            g.t_end,
-            g.score_every,
-        )?;
+        let (r, sha): (ChainReference, String) =
+            self.header.load_reference(root, &self.setup.grid)?;
         self.reference = Some((r, sha));
         Ok(())
     }
