@@ -161,7 +161,7 @@ impl<S: SecondOrder + ?Sized> Method<S> for GenAlpha {
         };
         newton::solve_acceleration(sys, p, &self.newton, NAME, w, stats)?;
         w.aux1.axpy(ratio, &w.a1, 1.0);
-        newton::accept(state, stats, t, NAME, false)
+        newton::accept(state, stats, t, NAME, newton::Trial::Aux)
     }
 }
 

@@ -259,7 +259,7 @@ impl<S: Constraints + ?Sized> Method<S> for GenAlphaI3 {
             return Err(newton::newton_failure(t, NAME, &self.newton));
         }
         self.dependents(h, state);
-        newton::accept(state, stats, t, NAME, true)
+        newton::accept(state, stats, t, NAME, newton::Trial::AuxLambda)
     }
 
     /// A state with room for the multipliers (`State::for_constrained`).

@@ -167,7 +167,7 @@ impl<S: SecondOrder + ?Sized> Method<S> for Hht {
         w.v1.axpy(h * (1.0 - ga), &state.a, 1.0);
         w.v1.axpy(h * ga, &w.a1, 1.0);
         w.aux1.copy_from(&w.a1);
-        newton::accept(state, stats, t, NAME, false)
+        newton::accept(state, stats, t, NAME, newton::Trial::Plain)
     }
 }
 

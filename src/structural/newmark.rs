@@ -127,7 +127,7 @@ impl<S: SecondOrder + ?Sized> Method<S> for Newmark {
         };
         newton::solve_acceleration(sys, p, &self.newton, NAME, w, stats)?;
         w.aux1.copy_from(&w.a1);
-        newton::accept(state, stats, t, NAME, false)
+        newton::accept(state, stats, t, NAME, newton::Trial::Plain)
     }
 }
 

@@ -107,24 +107,36 @@ pub(crate) fn lu_failure(e: LuError, t: f64, method: &str) -> Failure {
     Failure::new(kind, t, format!("{method}: iteration matrix: {e}"))
 }
 
+/// What a step's trial values hold beyond `q`, `v`, `a`, for [`accept`] to check.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Trial {
+    /// Nothing: `aux` is a copy of `a` (Newmark, HHT), checked once as `a`.
+    Plain,
+    /// The auxiliary acceleration `aux` of its own (generalized-alpha).
+    Aux,
+    /// `aux` and the multipliers `lambda` (the index-3 generalized-alpha).
+    AuxLambda,
+}
+
 /// Ends a step from `t` whose trial values are in the workspace: a `non_finite` failure
-/// naming the first of them that is not finite (`q`, `v`, `a`, `aux`, then `lambda` when
-/// `with_lambda`), the state left at `t`; otherwise they become the state
-/// (`State::commit`) and the step is counted.
+/// naming the first of them that is not finite (`q`, `v`, `a`, then `aux` and `lambda` as
+/// `trial` says), the state left at `t`; otherwise they become the state (`State::commit`)
+/// and the step is counted.
 pub(crate) fn accept(
     state: &mut State,
     stats: &mut Stats,
     t: f64,
     method: &str,
-    with_lambda: bool,
+    trial: Trial,
 ) -> Result<(), Failure> {
     let w = &state.work;
-    let trial = [(&w.q1, "q"), (&w.v1, "v"), (&w.a1, "a"), (&w.aux1, "aux")];
-    let lambda = with_lambda.then_some((&w.lambda1, "lambda"));
-    for (x, what) in trial.into_iter().chain(lambda) {
+    let aux = (trial != Trial::Plain).then_some((&w.aux1, "aux"));
+    let lambda = (trial == Trial::AuxLambda).then_some((&w.lambda1, "lambda"));
+    let always = [(&w.q1, "q"), (&w.v1, "v"), (&w.a1, "a")];
+    for (x, what) in always.into_iter().chain(aux).chain(lambda) {
         check_finite(x, t, method, what)?;
     }
-    state.commit(with_lambda);
+    state.commit(trial == Trial::AuxLambda);
     stats.steps += 1;
     Ok(())
 }
