@@ -45,8 +45,11 @@
 //! `rho_inf` only like `(h omega)^(-2/3)` (`1.5e-3` above it at `h omega = 1e4`, measured); resolved modes are slightly damped; Newton failures and non-finite states are
 //! `newton_failure` and `non_finite`.
 use super::SecondOrder;
+use super::equilibrium::Equilibrium;
 use super::method::Method;
 use super::newton::{self, NewtonOptions, Point};
+use super::path::PathDependent;
+use super::path_step::{Path, Series};
 use super::state::State;
 pub use crate::integrate::gen_alpha_coefficients::Coefficients;
 use crate::integrate::{Failure, Stats};
@@ -86,10 +89,10 @@ const NAME: &str = "gen_alpha";
 /// let mut ga = GenAlpha::new(0.9, NewtonOptions::default()).unwrap();
 /// let (mut st, mut stats) = (State::for_system(&Oscillator), Stats::default());
 /// st.set(&[1.0], &[0.0]);
-/// ga.init(&Oscillator, 0.0, &mut st, &mut stats).unwrap();
+/// ga.init(&mut Oscillator, 0.0, &mut st, &mut stats).unwrap();
 /// let h = 2.0 * std::f64::consts::PI / 100.0;
 /// for k in 0..100 {
-///     ga.step(&Oscillator, k as f64 * h, h, &mut st, &mut stats).unwrap();
+///     ga.step(&mut Oscillator, k as f64 * h, h, &mut st, &mut stats).unwrap();
 /// }
 /// let energy = 0.5 * (st.q[0] * st.q[0] + st.v[0] * st.v[0]);
 /// assert!((energy - 0.5).abs() < 1e-3);
@@ -128,12 +131,13 @@ impl<S: SecondOrder + ?Sized> Method<S> for GenAlpha {
     /// Advances `state` from `t` to `t + h` by (G1)-(G4).
     fn step(
         &mut self,
-        sys: &S,
+        sys: &mut S,
         t: f64,
         h: f64,
         state: &mut State,
         stats: &mut Stats,
     ) -> Result<(), Failure> {
+        let sys: &S = sys;
         newton::check_step(t, h, NAME)?;
         state.assert_sizes(sys.dim(), state.n_constraints());
         let (am, af, be, ga) = (self.c.alpha_m, self.c.alpha_f, self.c.beta, self.c.gamma);
@@ -162,6 +166,29 @@ impl<S: SecondOrder + ?Sized> Method<S> for GenAlpha {
         newton::solve_acceleration(sys, p, &self.newton, NAME, w, stats)?;
         w.aux1.axpy(ratio, &w.a1, 1.0);
         newton::accept(state, stats, t, NAME, newton::Trial::Aux)
+    }
+}
+
+/// On a path-dependent structure: its coefficients `(alpha_m, alpha_f, beta, gamma)` ([`Path::alpha_step`]).
+impl<S: PathDependent, E: Equilibrium<S>, G: Series> Method<Path<S, E, G>> for GenAlpha {
+    const NAME: &'static str = NAME;
+
+    fn step(
+        &mut self,
+        sys: &mut Path<S, E, G>,
+        t: f64,
+        h: f64,
+        state: &mut State,
+        stats: &mut Stats,
+    ) -> Result<(), Failure> {
+        sys.alpha_step(
+            t,
+            h,
+            state,
+            stats,
+            (self.c.alpha_m, self.c.alpha_f, self.c.beta, self.c.gamma),
+            NAME,
+        )
     }
 }
 
@@ -227,15 +254,16 @@ mod tests {
     /// system to round-off, like Newmark.
     #[test]
     fn rho_one_conserves_linear_energy() {
-        let sys = Linear::two_dof(0.0);
+        let mut sys = Linear::two_dof(0.0);
         let mut m = GenAlpha::new(1.0, tight()).unwrap();
         let (mut st, mut stats) = (State::for_system(&sys), Stats::default());
         st.set(&[1.0, -0.5], &[0.3, 0.0]);
-        m.init(&sys, 0.0, &mut st, &mut stats).unwrap();
+        m.init(&mut sys, 0.0, &mut st, &mut stats).unwrap();
         let e0 = sys.energy(&st);
         let h = 0.8 / sys.omega_max();
         for k in 0..2000 {
-            m.step(&sys, k as f64 * h, h, &mut st, &mut stats).unwrap();
+            m.step(&mut sys, k as f64 * h, h, &mut st, &mut stats)
+                .unwrap();
         }
         let err = (sys.energy(&st) - e0).abs() / e0;
         assert!(err < 1e-12, "{err:e}");

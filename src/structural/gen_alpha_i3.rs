@@ -100,11 +100,11 @@ const NAME: &str = "gen_alpha_i3";
 /// let mut m = GenAlphaI3::new(0.9, NewtonOptions::default()).unwrap();
 /// let (mut st, mut stats) = (State::for_constrained(&Line), Stats::default());
 /// st.set(&[1.0, 1.0], &[0.0, 0.0]);
-/// m.init(&Line, 0.0, &mut st, &mut stats).unwrap();
+/// m.init(&mut Line, 0.0, &mut st, &mut stats).unwrap();
 /// assert!((st.lambda[0] - 1.0).abs() < 1e-12);
 /// let (h, n) = (1e-3, 1000);
 /// for k in 0..n {
-///     m.step(&Line, k as f64 * h, h, &mut st, &mut stats).unwrap();
+///     m.step(&mut Line, k as f64 * h, h, &mut st, &mut stats).unwrap();
 ///     assert!((st.q[0] - st.q[1]).abs() < 1e-14);
 /// }
 /// let exact = (2f64.sqrt() * (n as f64 * h)).cos();
@@ -166,23 +166,25 @@ impl<S: Constraints + ?Sized> Method<S> for GenAlphaI3 {
     /// constraint `G v_0 + g_t = 0`; they are not checked or projected.
     fn init(
         &mut self,
-        sys: &S,
+        sys: &mut S,
         t0: f64,
         state: &mut State,
         stats: &mut Stats,
     ) -> Result<(), Failure> {
+        let sys: &S = sys;
         super::init::acceleration_constrained(sys, t0, state, stats, NAME)
     }
 
     /// Advances `state` from `t` to `t + h` by (G1)-(G3), (C1)-(C3).
     fn step(
         &mut self,
-        sys: &S,
+        sys: &mut S,
         t: f64,
         h: f64,
         state: &mut State,
         stats: &mut Stats,
     ) -> Result<(), Failure> {
+        let sys: &S = sys;
         newton::check_step(t, h, NAME)?;
         let (n, m) = (sys.dim(), sys.n_constraints());
         state.assert_sizes(n, m);
@@ -301,11 +303,12 @@ mod tests {
     /// the error of `(q, v)` at the end, of `lambda` at the end, the largest `lambda` error
     /// over the run, and the largest `|g|` after any step.
     fn run(n: usize, rho_inf: f64, exact: &[(f64, f64)], t_end: f64) -> [f64; 4] {
+        let mut pend = PEND;
         let mut m = GenAlphaI3::new(rho_inf, tight()).unwrap();
         let (mut st, mut stats) = (State::for_constrained(&PEND), Stats::default());
         let (q0, v0) = PEND.cartesian(exact[0].0, exact[0].1);
         st.set(&q0, &v0);
-        m.init(&PEND, 0.0, &mut st, &mut stats).unwrap();
+        m.init(&mut pend, 0.0, &mut st, &mut stats).unwrap();
         let lam0 = PEND.lambda(exact[0].0, exact[0].1);
         assert!(
             (st.lambda[0] - lam0).abs() < 1e-8,
@@ -317,7 +320,8 @@ mod tests {
         let (mut lam_max, mut g_max) = (0.0_f64, 0.0_f64);
         let mut g = DVector::zeros(1);
         for k in 0..n {
-            m.step(&PEND, k as f64 * h, h, &mut st, &mut stats).unwrap();
+            m.step(&mut pend, k as f64 * h, h, &mut st, &mut stats)
+                .unwrap();
             PEND.g(0.0, &st.q, &mut g);
             g_max = g_max.max(g[0].abs());
             let (th, om) = exact[(k + 1) * stride];
@@ -382,15 +386,17 @@ mod tests {
     /// order one.
     #[test]
     fn newton_converges_at_any_step_size() {
+        let mut pend = PEND;
         for h in [1e-1, 1e-6] {
             let mut m = GenAlphaI3::new(0.9, tight()).unwrap();
             let (mut st, mut stats) = (State::for_constrained(&PEND), Stats::default());
             let (q0, v0) = PEND.cartesian(1.0, 0.5);
             st.set(&[q0[0] * 1.001, q0[1] * 1.001], &v0);
-            m.init(&PEND, 0.0, &mut st, &mut stats).unwrap();
+            m.init(&mut pend, 0.0, &mut st, &mut stats).unwrap();
             let mut g = DVector::zeros(1);
             for k in 0..20 {
-                m.step(&PEND, k as f64 * h, h, &mut st, &mut stats).unwrap();
+                m.step(&mut pend, k as f64 * h, h, &mut st, &mut stats)
+                    .unwrap();
                 PEND.g(0.0, &st.q, &mut g);
                 assert!(g[0].abs() < 1e-15, "h = {h}, step {k}: g = {:e}", g[0]);
             }
@@ -404,12 +410,15 @@ mod tests {
     /// step's time; the state is left as it was.
     #[test]
     fn newton_cap_fails() {
+        let mut pend = PEND;
         let mut m = GenAlphaI3::new(0.9, cap_one()).unwrap();
         let (mut st, mut stats) = (State::for_constrained(&PEND), Stats::default());
         let (q0, v0) = PEND.cartesian(1.0, 0.5);
         st.set(&q0, &v0);
-        m.init(&PEND, 0.0, &mut st, &mut stats).unwrap();
-        let f = m.step(&PEND, 0.0, 0.1, &mut st, &mut stats).unwrap_err();
+        m.init(&mut pend, 0.0, &mut st, &mut stats).unwrap();
+        let f = m
+            .step(&mut pend, 0.0, 0.1, &mut st, &mut stats)
+            .unwrap_err();
         assert_eq!((f.kind, f.t), (FailureKind::NewtonFailure, 0.0));
         assert_eq!((st.q[0], st.q[1]), (q0[0], q0[1]));
     }
@@ -417,6 +426,7 @@ mod tests {
     /// `rho_inf` outside `[0, 1]` is an error naming it; a non-finite step is a failure.
     #[test]
     fn bad_parameters_are_errors() {
+        let mut pend = PEND;
         for rho in [-0.5, 2.0, f64::NAN] {
             let e = GenAlphaI3::new(rho, NewtonOptions::default()).unwrap_err();
             assert!(e.contains("rho_inf"), "{e}");
@@ -425,7 +435,7 @@ mod tests {
         let mut st = State::for_constrained(&PEND);
         st.set(&[0.0, -1.0], &[0.0, 0.0]);
         let f = m
-            .step(&PEND, 0.0, f64::NAN, &mut st, &mut Stats::default())
+            .step(&mut pend, 0.0, f64::NAN, &mut st, &mut Stats::default())
             .unwrap_err();
         assert_eq!(f.kind, FailureKind::NonFinite);
     }

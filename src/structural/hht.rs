@@ -38,8 +38,11 @@
 //! coordinates' `q_{n+1}` satisfy it only to `O(h^2)`; Newton failures and non-finite
 //! states are `newton_failure` and `non_finite`.
 use super::SecondOrder;
+use super::equilibrium::Equilibrium;
 use super::method::Method;
 use super::newton::{self, NewtonOptions, Point};
+use super::path::PathDependent;
+use super::path_step::{Path, Series};
 use super::state::State;
 use crate::integrate::{Failure, Stats};
 
@@ -79,10 +82,10 @@ const NAME: &str = "hht";
 /// let mut hht = Hht::new(-0.05, NewtonOptions::default()).unwrap();
 /// let (mut st, mut stats) = (State::for_system(&Oscillator), Stats::default());
 /// st.set(&[1.0], &[0.0]);
-/// hht.init(&Oscillator, 0.0, &mut st, &mut stats).unwrap();
+/// hht.init(&mut Oscillator, 0.0, &mut st, &mut stats).unwrap();
 /// let h = 2.0 * std::f64::consts::PI / 100.0;
 /// for k in 0..100 {
-///     hht.step(&Oscillator, k as f64 * h, h, &mut st, &mut stats).unwrap();
+///     hht.step(&mut Oscillator, k as f64 * h, h, &mut st, &mut stats).unwrap();
 /// }
 /// let energy = 0.5 * (st.q[0] * st.q[0] + st.v[0] * st.v[0]);
 /// assert!(energy < 0.5 && energy > 0.5 - 1e-3);
@@ -132,12 +135,13 @@ impl<S: SecondOrder + ?Sized> Method<S> for Hht {
     /// Advances `state` from `t` to `t + h` by (H1)-(H3).
     fn step(
         &mut self,
-        sys: &S,
+        sys: &mut S,
         t: f64,
         h: f64,
         state: &mut State,
         stats: &mut Stats,
     ) -> Result<(), Failure> {
+        let sys: &S = sys;
         newton::check_step(t, h, NAME)?;
         state.assert_sizes(sys.dim(), state.n_constraints());
         let (al, be, ga) = (self.alpha, self.beta, self.gamma);
@@ -168,6 +172,29 @@ impl<S: SecondOrder + ?Sized> Method<S> for Hht {
         w.v1.axpy(h * ga, &w.a1, 1.0);
         w.aux1.copy_from(&w.a1);
         newton::accept(state, stats, t, NAME, newton::Trial::Plain)
+    }
+}
+
+/// On a path-dependent structure: `am = 0`, `af = -alpha`, its `beta`, `gamma` ([`Path::alpha_step`]).
+impl<S: PathDependent, E: Equilibrium<S>, G: Series> Method<Path<S, E, G>> for Hht {
+    const NAME: &'static str = NAME;
+
+    fn step(
+        &mut self,
+        sys: &mut Path<S, E, G>,
+        t: f64,
+        h: f64,
+        state: &mut State,
+        stats: &mut Stats,
+    ) -> Result<(), Failure> {
+        sys.alpha_step(
+            t,
+            h,
+            state,
+            stats,
+            (0.0, -self.alpha, self.beta, self.gamma),
+            NAME,
+        )
     }
 }
 
@@ -217,17 +244,18 @@ mod tests {
     /// at a resolved and an unresolved step, and never rises far above it.
     #[test]
     fn energy_decays_for_linear_systems() {
-        let sys = Linear::two_dof(0.0);
+        let mut sys = Linear::two_dof(0.0);
         for hw in [0.3, 30.0] {
             let mut m = Hht::default();
             let (mut st, mut stats) = (State::for_system(&sys), Stats::default());
             st.set(&[1.0, -0.5], &[0.3, 0.0]);
-            m.init(&sys, 0.0, &mut st, &mut stats).unwrap();
+            m.init(&mut sys, 0.0, &mut st, &mut stats).unwrap();
             let h = hw / sys.omega_max();
             let e0 = sys.energy(&st);
             let mut top: f64 = 0.0;
             for k in 0..2000 {
-                m.step(&sys, k as f64 * h, h, &mut st, &mut stats).unwrap();
+                m.step(&mut sys, k as f64 * h, h, &mut st, &mut stats)
+                    .unwrap();
                 top = top.max(sys.energy(&st) / e0);
             }
             let end = sys.energy(&st) / e0;

@@ -1,7 +1,10 @@
 //! One interface over the structural integrators, so that a family's run loop is written once
 //! and monomorphised per method (static dispatch, no allocation per step): [`Method`] for
 //! systems of type `S`, implemented in their own files by `Newmark`, `Hht` and `GenAlpha` for
-//! every [`SecondOrder`] system and by `GenAlphaI3` for every [`Constraints`] system.
+//! every [`SecondOrder`] system and every path-dependent structure ([`Path`]: the fiber
+//! column's dynamic scene), by `GenAlphaI3` for every [`Constraints`] system and by
+//! `Midpoint` (energy-consistent) for path-dependent structures. What a kind of system
+//! brings for every method, its state and its consistent start, is [`Structural`].
 //!
 //! Each method writes its `NAME` and its `step` (the equations and orders are in its file,
 //! the checks that open and close a step in `newton`); what the four share beyond that is
@@ -15,9 +18,65 @@
 //! system (a method's `info` alone) the call names it, as `Method::<Fe>::info(&m)`.
 //!
 //! [`Constraints`]: super::Constraints
+//! [`Path`]: super::path_step::Path
 use super::SecondOrder;
+use super::equilibrium::Equilibrium;
+use super::path::PathDependent;
+use super::path_step::{Path, Series};
 use super::state::State;
 use crate::integrate::{Failure, MethodInfo, MethodKind, Stats};
+
+/// A kind of system the structural methods run on: its state and its consistent start.
+/// Every [`SecondOrder`] system is one (the start (I1)/(I2) of `init.rs`), and so is every
+/// path-dependent structure with mass and load ([`Path`]: `q` its displacements, the
+/// accelerations from `M a_0 = p s(t_0) - C v_0`).
+pub trait Structural {
+    /// A state sized for the system.
+    fn new_state(&self) -> State;
+
+    /// Consistent initial accelerations at `t0` from `state.q`, `state.v` (for a path, `q`
+    /// is read from the structure); `method` names the caller in a failure.
+    fn start(
+        &mut self,
+        t0: f64,
+        state: &mut State,
+        stats: &mut Stats,
+        method: &str,
+    ) -> Result<(), Failure>;
+}
+
+impl<S: SecondOrder + ?Sized> Structural for S {
+    fn new_state(&self) -> State {
+        State::for_system(self)
+    }
+
+    fn start(
+        &mut self,
+        t0: f64,
+        state: &mut State,
+        stats: &mut Stats,
+        method: &str,
+    ) -> Result<(), Failure> {
+        super::init::acceleration(&*self, t0, state, stats, method)
+    }
+}
+
+impl<S: PathDependent, E: Equilibrium<S>, G: Series> Structural for Path<S, E, G> {
+    fn new_state(&self) -> State {
+        State::new(self.system.dim(), 0)
+    }
+
+    fn start(
+        &mut self,
+        t0: f64,
+        state: &mut State,
+        _stats: &mut Stats,
+        _method: &str,
+    ) -> Result<(), Failure> {
+        self.start_from_equilibrium(t0, state);
+        Ok(())
+    }
+}
 
 /// A structural integrator for systems of type `S`.
 ///
@@ -46,35 +105,36 @@ use crate::integrate::{Failure, MethodInfo, MethodKind, Stats};
 /// assert_eq!(order::<Unit, _>(&m), 2);
 /// assert_eq!(Method::<Unit>::info(&m).name, "newmark");
 /// ```
-pub trait Method<S: SecondOrder + ?Sized> {
+pub trait Method<S: Structural + ?Sized> {
     /// The method's name, in its `info` and in its failures.
     const NAME: &'static str;
 
     /// Consistent initial accelerations (and multipliers) at `t0` from `state.q`, `state.v`.
-    /// Provided: (I1)/(I2) of `init.rs` into `state.a` and `state.aux` (`a_0 = qdd_0`); the
-    /// constrained method solves (I3) instead.
+    /// Provided: the system's [`Structural::start`] into `state.a` and `state.aux`
+    /// (`a_0 = qdd_0`); the constrained method solves (I3) instead.
     ///
     /// # Panics
     ///
     /// If `state` is not sized for `sys` ([`Method::new_state`]).
     fn init(
         &mut self,
-        sys: &S,
+        sys: &mut S,
         t0: f64,
         state: &mut State,
         stats: &mut Stats,
     ) -> Result<(), Failure> {
-        super::init::acceleration(sys, t0, state, stats, Self::NAME)
+        sys.start(t0, state, stats, Self::NAME)
     }
 
-    /// One step from `t` to `t + h`; on failure `state` is unchanged.
+    /// One step from `t` to `t + h`; on failure `state` is unchanged (and a path-dependent
+    /// structure reverted).
     ///
     /// # Panics
     ///
     /// If `state` is not sized for `sys` ([`Method::new_state`]).
     fn step(
         &mut self,
-        sys: &S,
+        sys: &mut S,
         t: f64,
         h: f64,
         state: &mut State,
@@ -99,9 +159,9 @@ pub trait Method<S: SecondOrder + ?Sized> {
         }
     }
 
-    /// A state sized for `sys`. Provided: without multipliers (`State::for_system`); the
-    /// constrained method makes room for them.
+    /// A state sized for `sys`. Provided: the system's ([`Structural::new_state`], without
+    /// multipliers); the constrained method makes room for them.
     fn new_state(&self, sys: &S) -> State {
-        State::for_system(sys)
+        sys.new_state()
     }
 }

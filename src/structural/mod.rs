@@ -1,5 +1,14 @@
 //! Structural dynamics: the second-order systems of the flexible families (the flexible beam,
-//! later the fiber column and the constrained mechanisms) and their integrators.
+//! the fiber column, later the constrained mechanisms) and their integrators.
+//!
+//! Two kinds of system: [`SecondOrder`] (and [`Constraints`]) below, a residual of vectors
+//! `q`, `v`, `a` that a method may evaluate anywhere; and a path-dependent structure
+//! ([`path::PathDependent`]: hysteretic elements with committed histories, nodal rotations in
+//! a chart), solved in increments from its committed state by a solution algorithm of
+//! [`equilibrium`] (Newton, Newton with the energy line search, Krylov-accelerated Newton in
+//! [`krylov_newton`]), which are the static methods; with mass, damping and a load history
+//! ([`path_step::Path`]) it is stepped by the same Newmark, HHT and generalized-alpha methods
+//! and by the energy-consistent [`midpoint::Midpoint`].
 //!
 //! A system is written in residual form, with run-time sizes (its size comes from the case
 //! file: a mode or element count):
@@ -45,13 +54,21 @@
 //! accelerations, also for a singular mass matrix).
 use nalgebra::{DMatrix, DVector};
 
+pub mod equilibrium;
 pub mod gen_alpha;
 pub mod gen_alpha_i3;
 pub mod hht;
 mod init;
+pub mod krylov;
+pub mod krylov_newton;
 pub mod method;
+pub mod midpoint;
 pub mod newmark;
 pub mod newton;
+pub mod path;
+pub mod path_step;
+#[cfg(test)]
+mod path_tests;
 pub mod state;
 #[cfg(test)]
 mod test_support;
@@ -92,6 +109,44 @@ pub trait SecondOrder: Send + Sync {
         c_k: f64,
         s: &mut DMatrix<f64>,
     );
+}
+
+/// A shared reference to a second-order system is one (its methods read the system only),
+/// so a method, whose `step` takes the system mutably for the path-dependent kind, runs on
+/// a system that is borrowed.
+impl<S: SecondOrder + ?Sized> SecondOrder for &S {
+    fn dim(&self) -> usize {
+        (**self).dim()
+    }
+
+    fn residual(
+        &self,
+        t: f64,
+        q: &DVector<f64>,
+        v: &DVector<f64>,
+        a: &DVector<f64>,
+        r: &mut DVector<f64>,
+    ) {
+        (**self).residual(t, q, v, a, r)
+    }
+
+    fn length_scale(&self) -> f64 {
+        (**self).length_scale()
+    }
+
+    fn tangent(
+        &self,
+        t: f64,
+        q: &DVector<f64>,
+        v: &DVector<f64>,
+        a: &DVector<f64>,
+        c_m: f64,
+        c_c: f64,
+        c_k: f64,
+        s: &mut DMatrix<f64>,
+    ) {
+        (**self).tangent(t, q, v, a, c_m, c_c, c_k, s)
+    }
 }
 
 /// Holonomic constraints `g(t, q) = 0` (length `m`) on a second-order system, with the

@@ -26,8 +26,11 @@
 //! stability (the reason for energy-momentum methods). A Newton that does not converge is a
 //! `newton_failure`, a non-finite state `non_finite`.
 use super::SecondOrder;
+use super::equilibrium::Equilibrium;
 use super::method::Method;
 use super::newton::{self, NewtonOptions, Point};
+use super::path::PathDependent;
+use super::path_step::{Path, Series};
 use super::state::State;
 use crate::integrate::{Failure, Stats};
 
@@ -68,10 +71,10 @@ const NAME: &str = "newmark";
 /// let mut nm = Newmark::new(NewtonOptions::default()).unwrap();
 /// let (mut st, mut stats) = (State::for_system(&Oscillator), Stats::default());
 /// st.set(&[1.0], &[0.0]);
-/// nm.init(&Oscillator, 0.0, &mut st, &mut stats).unwrap();
+/// nm.init(&mut Oscillator, 0.0, &mut st, &mut stats).unwrap();
 /// let h = 2.0 * std::f64::consts::PI / 20.0;
 /// for k in 0..200 {
-///     nm.step(&Oscillator, k as f64 * h, h, &mut st, &mut stats).unwrap();
+///     nm.step(&mut Oscillator, k as f64 * h, h, &mut st, &mut stats).unwrap();
 /// }
 /// let energy = 0.5 * (st.q[0] * st.q[0] + st.v[0] * st.v[0]);
 /// assert!((energy - 0.5).abs() < 1e-13);
@@ -103,12 +106,13 @@ impl<S: SecondOrder + ?Sized> Method<S> for Newmark {
     /// Advances `state` from `t` to `t + h` by (NM1)-(NM3).
     fn step(
         &mut self,
-        sys: &S,
+        sys: &mut S,
         t: f64,
         h: f64,
         state: &mut State,
         stats: &mut Stats,
     ) -> Result<(), Failure> {
+        let sys: &S = sys;
         newton::check_step(t, h, NAME)?;
         state.assert_sizes(sys.dim(), state.n_constraints());
         let w = &mut state.work;
@@ -131,6 +135,22 @@ impl<S: SecondOrder + ?Sized> Method<S> for Newmark {
     }
 }
 
+/// On a path-dependent structure: `am = af = 0`, `beta = 1/4`, `gamma = 1/2` ([`Path::alpha_step`]).
+impl<S: PathDependent, E: Equilibrium<S>, G: Series> Method<Path<S, E, G>> for Newmark {
+    const NAME: &'static str = NAME;
+
+    fn step(
+        &mut self,
+        sys: &mut Path<S, E, G>,
+        t: f64,
+        h: f64,
+        state: &mut State,
+        stats: &mut Stats,
+    ) -> Result<(), Failure> {
+        sys.alpha_step(t, h, state, stats, (0.0, 0.0, BETA, GAMMA), NAME)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::test_support::*;
@@ -140,16 +160,17 @@ mod tests {
     /// round-off over 10 000 steps (a coarse `h omega_max = 0.8`), for any step size.
     #[test]
     fn energy_is_conserved_for_linear_systems() {
-        let sys = Linear::two_dof(0.0);
+        let mut sys = Linear::two_dof(0.0);
         let mut nm = Newmark::new(tight()).unwrap();
         let (mut st, mut stats) = (State::for_system(&sys), Stats::default());
         st.set(&[1.0, -0.5], &[0.3, 0.0]);
-        nm.init(&sys, 0.0, &mut st, &mut stats).unwrap();
+        nm.init(&mut sys, 0.0, &mut st, &mut stats).unwrap();
         let e0 = sys.energy(&st);
         let h = 0.8 / sys.omega_max();
         let mut worst: f64 = 0.0;
         for k in 0..10_000 {
-            nm.step(&sys, k as f64 * h, h, &mut st, &mut stats).unwrap();
+            nm.step(&mut sys, k as f64 * h, h, &mut st, &mut stats)
+                .unwrap();
             worst = worst.max((sys.energy(&st) - e0).abs() / e0);
         }
         eprintln!("newmark: relative energy error over 10000 steps {worst:e}");

@@ -300,7 +300,7 @@ pub(crate) const LADDER: [usize; 5] = [40, 80, 160, 320, 640];
 
 /// The errors `max(|q - q_ref|, |v - v_ref|)` at `t_end` on the ladder.
 pub(crate) fn ladder_errors<M: Method<dyn SecondOrder>>(
-    case: &Case,
+    case: &mut Case,
     make: impl Fn() -> M,
 ) -> Vec<f64> {
     let (qr, vr) = reference(&*case.sys, &case.q0, &case.v0, case.t_end, 40_000);
@@ -308,8 +308,8 @@ pub(crate) fn ladder_errors<M: Method<dyn SecondOrder>>(
         .iter()
         .map(|&n| {
             let mut m = make();
-            let sys = &*case.sys;
-            let (mut st, mut stats) = (State::for_system(sys), Stats::default());
+            let sys = &mut *case.sys;
+            let (mut st, mut stats) = (State::for_system(&*sys), Stats::default());
             st.set(&case.q0, &case.v0);
             m.init(sys, 0.0, &mut st, &mut stats).unwrap();
             let h = case.t_end / n as f64;
@@ -334,8 +334,8 @@ pub(crate) fn orders(errors: &[f64]) -> Vec<f64> {
 
 /// Every observed order of every nonlinear case is within 0.25 of 2.
 pub(crate) fn check_order<M: Method<dyn SecondOrder>>(make: impl Fn() -> M, name: &str) {
-    for case in nonlinear_cases() {
-        let errors = ladder_errors(&case, &make);
+    for mut case in nonlinear_cases() {
+        let errors = ladder_errors(&mut case, &make);
         let p = orders(&errors);
         eprintln!(
             "{name} on {}: errors {}, orders {p:.3?}",
@@ -361,7 +361,7 @@ pub(crate) fn spectral_radius<M: Method<dyn SecondOrder>>(m: &mut M) -> f64 {
 
 /// The spectral radius of the amplification matrix on `q'' + q = 0` at `h omega = h`.
 pub(crate) fn spectral_radius_at<M: Method<dyn SecondOrder>>(m: &mut M, h: f64) -> f64 {
-    let sys = Linear::oscillator(1.0, 0.0, 1.0);
+    let mut sys = Linear::oscillator(1.0, 0.0, 1.0);
     let scale = [1.0, h, h * h, h * h];
     let mut amp = Matrix4::zeros();
     for j in 0..4 {
@@ -373,7 +373,7 @@ pub(crate) fn spectral_radius_at<M: Method<dyn SecondOrder>>(m: &mut M, h: f64) 
         st.v[0] = unit[1] / h;
         st.a[0] = unit[2] / (h * h);
         st.aux[0] = unit[3] / (h * h);
-        m.step(&sys, 0.0, h, &mut st, &mut stats).unwrap();
+        m.step(&mut sys, 0.0, h, &mut st, &mut stats).unwrap();
         let out = [st.q[0], st.v[0], st.a[0], st.aux[0]];
         for i in 0..4 {
             amp[(i, j)] = out[i] * scale[i];
@@ -450,27 +450,27 @@ impl SecondOrder for MasslessChain {
 /// steps of 0.05 and returns the largest of: the mass's `q`, `v`, `a` against the reduced
 /// system's, and the node's distance from static equilibrium `x0 - share x1`.
 pub(crate) fn massless_vs_reduced<M: Method<dyn SecondOrder>>(make: impl Fn() -> M) -> f64 {
-    let chain = MasslessChain {
+    let mut chain = MasslessChain {
         m: 1.0,
         k1: 3.0,
         k2: 1.0,
         k3: 0.5,
     };
-    let red = chain.reduced();
+    let mut red = chain.reduced();
     let c = chain.share();
     let (mut full, mut small) = (State::for_system(&chain), State::for_system(&red));
     full.set(&[c, 1.0], &[0.2 * c, 0.2]);
     small.set(&[1.0], &[0.2]);
     let (mut mf, mut mr) = (make(), make());
     let mut stats = Stats::default();
-    mf.init(&chain, 0.0, &mut full, &mut stats).unwrap();
-    mr.init(&red, 0.0, &mut small, &mut stats).unwrap();
+    mf.init(&mut chain, 0.0, &mut full, &mut stats).unwrap();
+    mr.init(&mut red, 0.0, &mut small, &mut stats).unwrap();
     let h = 0.05;
     let mut worst: f64 = 0.0;
     for k in 0..400 {
         let t = k as f64 * h;
-        mf.step(&chain, t, h, &mut full, &mut stats).unwrap();
-        mr.step(&red, t, h, &mut small, &mut stats).unwrap();
+        mf.step(&mut chain, t, h, &mut full, &mut stats).unwrap();
+        mr.step(&mut red, t, h, &mut small, &mut stats).unwrap();
         worst = worst
             .max((full.q[1] - small.q[0]).abs())
             .max((full.v[1] - small.v[0]).abs())
@@ -484,7 +484,7 @@ pub(crate) fn massless_vs_reduced<M: Method<dyn SecondOrder>>(make: impl Fn() ->
 /// term) is a `newton_failure` at the step's start time, and leaves state and step count
 /// alone.
 pub(crate) fn newton_cap_check<M: Method<dyn SecondOrder>>(m: &mut M) {
-    let sys = Duffing {
+    let mut sys = Duffing {
         m: 1.0,
         c: 0.0,
         k: 1e4,
@@ -494,9 +494,11 @@ pub(crate) fn newton_cap_check<M: Method<dyn SecondOrder>>(m: &mut M) {
     };
     let (mut st, mut stats) = (State::for_system(&sys), Stats::default());
     st.set(&[1.0], &[0.0]);
-    m.init(&sys, 0.5, &mut st, &mut stats).unwrap();
+    m.init(&mut sys, 0.5, &mut st, &mut stats).unwrap();
     let a0 = st.a[0];
-    let f = m.step(&sys, 0.5, 0.01, &mut st, &mut stats).unwrap_err();
+    let f = m
+        .step(&mut sys, 0.5, 0.01, &mut st, &mut stats)
+        .unwrap_err();
     assert_eq!((f.kind, f.t), (FailureKind::NewtonFailure, 0.5), "{f:?}");
     assert!(f.message.contains("max_iters = 1"), "{}", f.message);
     assert_eq!((st.q[0], st.v[0], st.a[0]), (1.0, 0.0, a0));
@@ -505,12 +507,12 @@ pub(crate) fn newton_cap_check<M: Method<dyn SecondOrder>>(m: &mut M) {
 
 /// A non-finite or non-positive step is a `non_finite` failure that leaves the state alone.
 pub(crate) fn bad_step_check<M: Method<dyn SecondOrder>>(m: &mut M) {
-    let sys = Linear::oscillator(1.0, 0.0, 1.0);
+    let mut sys = Linear::oscillator(1.0, 0.0, 1.0);
     let (mut st, mut stats) = (State::for_system(&sys), Stats::default());
     st.set(&[1.0], &[0.0]);
-    m.init(&sys, 0.0, &mut st, &mut stats).unwrap();
+    m.init(&mut sys, 0.0, &mut st, &mut stats).unwrap();
     for h in [f64::NAN, f64::INFINITY, 0.0, -1.0] {
-        let f = m.step(&sys, 0.0, h, &mut st, &mut stats).unwrap_err();
+        let f = m.step(&mut sys, 0.0, h, &mut st, &mut stats).unwrap_err();
         assert_eq!(f.kind, FailureKind::NonFinite, "{f:?}");
         assert!(f.message.contains("step h"), "{}", f.message);
     }

@@ -4,7 +4,8 @@ use nalgebra::DVector;
 
 use super::basic::{Basic, DispBased, ForceBased};
 use crate::rotation::{MatrixProj, QuatProj, RotVec, RotationChart, So3};
-use super::column::{Algorithm, Column};
+use super::column::Column;
+use crate::structural::equilibrium::Newton;
 use super::elastica::{elastica_tip, rollup_tip};
 use super::section::{ElasticSection, Section};
 
@@ -33,7 +34,7 @@ fn elastica_error<C: RotationChart>(n: usize, alpha: f64, steps: usize) -> (f64,
     let mut iterations = 0;
     for k in 1..=steps {
         f[col.top_dof(0)] = alpha * k as f64 / steps as f64;
-        let (c, _) = col.step(&f, None, 1e-20, 30, Algorithm::Newton).unwrap();
+        let (c, _) = col.step(&mut Newton::new(1e-20, 30).unwrap(), &f, None).unwrap();
         iterations += c.iterations;
     }
     let exact = elastica_tip(alpha).unwrap();
@@ -83,7 +84,7 @@ fn rollup<C: RotationChart>(n: usize, steps: usize) -> (f64, f64, f64, usize) {
         let lambda = k as f64 / steps as f64;
         f[col.top_dof(4)] = lambda * std::f64::consts::TAU;
         iterations += col
-            .step(&f, None, 1e-20, 40, Algorithm::Newton)
+            .step(&mut Newton::new(1e-20, 40).unwrap(), &f, None)
             .unwrap()
             .0
             .iterations;
@@ -132,7 +133,7 @@ fn disp_based_equals_force_based_when_elastic() {
         let mut f = DVector::zeros(col.dim());
         for k in 1..=10 {
             f[col.top_dof(0)] = 2.0 * k as f64 / 10.0;
-            col.step(&f, None, 1e-20, 30, Algorithm::Newton).unwrap();
+            col.step(&mut Newton::new(1e-20, 30).unwrap(), &f, None).unwrap();
         }
         col.top_displacement()
     };

@@ -1,10 +1,16 @@
-//! Tests of the dynamic driver (`dynamic.rs`) on the `rc_pulse` scene: the first frequency
-//! after the axial prelude against OpenSees', each scheme's whole pulse against OpenSees'
-//! Newmark record, each scheme's energy balance, and each scheme's observed order in `h`.
-use super::column::Algorithm;
-use super::dynamic::{Scheme, omega1};
-use super::pulse_tests::{DT, STEPS, driver, ground, prelude};
+//! Tests of the structural methods on the column's dynamic scene (`dynamic.rs`, `rc_pulse`):
+//! the first frequency after the axial prelude against OpenSees', each scheme's whole pulse
+//! against OpenSees' Newmark record, each scheme's energy balance, and each scheme's observed
+//! order in `h`.
+use super::dynamic::omega1;
+use super::pulse_tests::{DT, Driver, STEPS, Scene, prelude};
 use super::rc_tests::{P, reference, reference_column};
+use crate::structural::gen_alpha::GenAlpha;
+use crate::structural::hht::Hht;
+use crate::structural::method::Method;
+use crate::structural::midpoint::Midpoint;
+use crate::structural::newmark::Newmark;
+use crate::structural::newton::NewtonOptions;
 
 /// OpenSees' record interval (s).
 const RECORD: f64 = 5e-3;
@@ -14,10 +20,20 @@ fn sci(x: &[f64]) -> String {
     format!("[{}]", v.join(", "))
 }
 
+/// The four structural methods the family runs on the pulse (HHT alpha = -0.05,
+/// generalized-alpha rho_inf = 0.9).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Scheme {
+    Newmark,
+    Hht,
+    GenAlpha,
+    Midpoint,
+}
+
 const SCHEMES: [Scheme; 4] = [
     Scheme::Newmark,
-    Scheme::Hht { alpha: -0.05 },
-    Scheme::GenAlpha { rho_inf: 0.9 },
+    Scheme::Hht,
+    Scheme::GenAlpha,
     Scheme::Midpoint,
 ];
 
@@ -34,7 +50,21 @@ struct Run {
 }
 
 fn run(scheme: Scheme, h: f64, steps: usize) -> Run {
-    let mut d = driver(scheme, h);
+    match scheme {
+        Scheme::Newmark => run_with(Newmark::new(NewtonOptions::default()).unwrap(), h, steps),
+        Scheme::Hht => run_with(Hht::new(-0.05, NewtonOptions::default()).unwrap(), h, steps),
+        Scheme::GenAlpha => run_with(
+            GenAlpha::new(0.9, NewtonOptions::default()).unwrap(),
+            h,
+            steps,
+        ),
+        Scheme::Midpoint => run_with(Midpoint, h, steps),
+    }
+}
+
+fn run_with<M: Method<Scene>>(method: M, h: f64, steps: usize) -> Run {
+    let name = Method::<Scene>::info(&method).name;
+    let mut d = Driver::new(method, h);
     let start = std::time::Instant::now();
     let mut out = Run {
         top: Vec::with_capacity(steps + 1),
@@ -47,8 +77,8 @@ fn run(scheme: Scheme, h: f64, steps: usize) -> Run {
     };
     out.top.push(d.column().top_displacement().x);
     for step in 1..=steps {
-        d.step(&ground, 1e-20, 50, Algorithm::Newton)
-            .unwrap_or_else(|e| panic!("{scheme:?} h {h}: step {step}: {e}"));
+        d.step()
+            .unwrap_or_else(|e| panic!("{name} h {h}: step {step}: {}", e.message));
         out.top.push(d.column().top_displacement().x);
         let e = d.energies();
         out.balance_max = out.balance_max.max(e.balance().abs());
@@ -57,7 +87,7 @@ fn run(scheme: Scheme, h: f64, steps: usize) -> Run {
         out.hysteretic_end = e.hysteretic;
     }
     out.seconds = start.elapsed().as_secs_f64();
-    out.iterations = d.iterations;
+    out.iterations = d.stats.newton_iters as usize;
     out
 }
 

@@ -15,7 +15,7 @@
 //! about a nanosecond. The runtime meter of a run (`column.rs`) counts with the same
 //! per-iteration figures ([`Mesh`]).
 use super::case::{ColumnCase, ColumnScene, Loading};
-use super::column::KRYLOV_DIM;
+use crate::structural::krylov_newton::KRYLOV_DIM;
 use super::section::FiberSection;
 use crate::case::{Case, Estimate, OrderClass, Scene};
 

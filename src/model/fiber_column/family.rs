@@ -4,23 +4,32 @@
 //! `matrix_proj`: the rotation module's `RotationChart`s); the formulations are `force_based` (the case's element
 //! count), `force_based_fine` (`fine_elements`, the static scenes' mesh check) and the
 //! displacement-based rivals `disp_based_n1`, `_n2`, `_n4`, `_n8` (that many elements); the
-//! integrators are the static solution algorithms `newton_load` (load control),
-//! `newton_disp`, `newton_disp_ls` (with the energy line search) and `newton_disp_krylov`
-//! (Krylov-accelerated, Carlson & Miller) under displacement control, and the dynamic
-//! schemes on the pulse (`newmark`, `hht`, `gen_alpha`, `midpoint`: `dynamic.rs`). Which apply to a scene follows from its loading (`problem.rs`,
-//! `na_reason`).
-use crate::rotation::{MatrixProj, PoseChart, QuatProj, RotVec, So3};
-use super::column::Algorithm;
+//! integrators are the static solution algorithms of `structural::equilibrium`:
+//! `newton_load` (Newton, load control), `newton_disp`, `newton_disp_ls` (with the energy line
+//! search) and `newton_disp_krylov` (Krylov-accelerated, Carlson & Miller) under displacement
+//! control, and the structural methods on the pulse (`newmark`, `hht`, `gen_alpha`, the
+//! flexible beam's, and the energy-consistent `midpoint`; `dynamic.rs`). Which apply to a
+//! scene follows from its loading (`problem.rs`, `na_reason`).
+use super::column::Column as Structure;
 use super::problem::FiberProblem;
-use super::dynamic::Scheme;
-use super::run::{Form, Keep, RunOut, ColumnSetup, run_static};
+use super::run::{ColumnSetup, Form, Keep, RunOut, run_static};
+use super::run_dynamic::Pulse;
 use super::run_dynamic::run_dynamic;
 use crate::case::{Case, CaseError, Scene};
-use crate::integrate::{MethodInfo, MethodKind};
+use crate::integrate::MethodInfo;
 use crate::problem::figures::{
     Admit, Figures, FormulationGroup, Measure, Quantity, Selection, Split,
 };
 use crate::problem::{Axes, Axis, Column, Family, Metric, Problem, Variant};
+use crate::rotation::{MatrixProj, PoseChart, QuatProj, RotVec, So3};
+use crate::structural::equilibrium::{Equilibrium, Newton, NewtonLineSearch};
+use crate::structural::gen_alpha::GenAlpha;
+use crate::structural::hht::Hht;
+use crate::structural::krylov_newton::KrylovNewton;
+use crate::structural::method::Method;
+use crate::structural::midpoint::Midpoint;
+use crate::structural::newmark::Newmark;
+use crate::structural::newton::NewtonOptions;
 
 /// The so3 variants, one panel per formulation: the algorithms and schemes side by side.
 /// The other charts reach the same equilibria (the tables and the heat map compare them), so
@@ -102,7 +111,11 @@ const FIGURES: Figures = Figures {
                     (m) at the score times, against OpenSees' run of the same column (black).",
                 y_label: "V (N)",
                 groups: &[FORMS_DB],
-                x: Some(("top_displacement", "top_displacement_reference", "u_top (m)")),
+                x: Some((
+                    "top_displacement",
+                    "top_displacement_reference",
+                    "u_top (m)",
+                )),
             },
             SO3_BY_FORMULATION,
         ),
@@ -174,15 +187,37 @@ pub const INTEGRATORS: &[&str] = &[
     "midpoint",
 ];
 
-/// The dynamic schemes: HHT with alpha = -0.05 and generalized-alpha with rho_inf = 0.9, as
-/// on the flexible beam.
-fn scheme(integrator: &str) -> Scheme {
-    match integrator {
-        "hht" => Scheme::Hht { alpha: -0.05 },
-        "gen_alpha" => Scheme::GenAlpha { rho_inf: 0.9 },
-        "midpoint" => Scheme::Midpoint,
-        _ => Scheme::Newmark,
-    }
+/// The dynamic schemes, the structural module's methods: HHT with alpha = -0.05 and
+/// generalized-alpha with rho_inf = 0.9, as on the flexible beam (their Newton options serve
+/// second-order systems; on the column the steps are solved by the column's Newton).
+macro_rules! scheme {
+    ("newmark") => {
+        Newmark::new(NewtonOptions::default()).expect("valid defaults")
+    };
+    ("hht") => {
+        Hht::default()
+    };
+    ("gen_alpha") => {
+        GenAlpha::default()
+    };
+    ("midpoint") => {
+        Midpoint
+    };
+}
+
+/// The static solution algorithms: `newton_load` and `newton_disp` are Newton under load
+/// and displacement control (the scene decides which), `_ls` with the energy line search,
+/// `_krylov` Krylov-accelerated.
+macro_rules! solver {
+    ("newton_disp_ls") => {
+        NewtonLineSearch::new
+    };
+    ("newton_disp_krylov") => {
+        KrylovNewton::new
+    };
+    ($other:literal) => {
+        Newton::new
+    };
 }
 
 /// The fiber-column family.
@@ -231,11 +266,16 @@ pub static FAMILY: Family = Family {
     stability_quick: &["newmark", "hht", "gen_alpha", "midpoint", "newton_load"],
     study: None,
     // Its references: the static scenes' elastica (exact), the cyclic and pulse scenes' OpenSees runs (external).
-    references: &[crate::case::ReferenceKind::EXACT, crate::case::ReferenceKind::EXTERNAL],
+    references: &[
+        crate::case::ReferenceKind::EXACT,
+        crate::case::ReferenceKind::EXTERNAL,
+    ],
 };
 
 fn static_na_reason(param: &str, integrator: &str, formulation: &str) -> String {
-    if param != "so3" && (formulation.starts_with("disp_based") || integrator.starts_with("newton_disp_")) {
+    if param != "so3"
+        && (formulation.starts_with("disp_based") || integrator.starts_with("newton_disp_"))
+    {
         "the chart axis is compared on force_based under newton_load and newton_disp; the \
          rival meshes and the accelerated algorithms run on so3 (at the RC top's rotation of at \
          most 0.045 rad the charts converge to the same equilibrium)"
@@ -267,31 +307,20 @@ fn static_na_reason(param: &str, integrator: &str, formulation: &str) -> String 
 /// A monomorphised run.
 pub type RunFn = fn(&ColumnSetup, f64, Keep) -> Result<RunOut, String>;
 
-/// The facts of an algorithm: implicit, structural, order 2 (the dynamic schemes' order,
-/// `dynamic_tests.rs`; for a static algorithm only the step ladders' class: a static path
-/// has no time-discretisation order and its error against the reference does not fall with
-/// the load step); the midpoint rule closes the energy balance by construction.
-fn info(name: &'static str) -> MethodInfo {
+/// The facts of a static algorithm under its integrator name: the solver's (implicit,
+/// structural, order 2 as the step ladders' class: a static path has no time-discretisation
+/// order and its error against the reference does not fall with the load step).
+fn static_info<E: Equilibrium<Structure<So3>>>(name: &'static str, solver: E) -> MethodInfo {
     MethodInfo {
         name,
-        order: 2,
-        stages: 1,
-        implicit: true,
-        symplectic: false,
-        lie_group: false,
-        energy_conserving: name == "midpoint",
-        adaptive: false,
-        kind: MethodKind::Structural,
-        twin_of: None,
+        ..solver.info()
     }
 }
 
-fn algorithm(integrator: &str) -> Algorithm {
-    match integrator {
-        "newton_disp_ls" => Algorithm::LineSearch,
-        "newton_disp_krylov" => Algorithm::Krylov,
-        _ => Algorithm::Newton,
-    }
+/// The facts of a dynamic scheme: the structural method's (order 2, `dynamic_tests.rs`;
+/// the midpoint rule energy-conserving).
+fn dynamic_info<M: Method<Pulse<So3>>>(method: M) -> MethodInfo {
+    method.info()
 }
 
 fn form(formulation: &str) -> Form {
@@ -307,10 +336,10 @@ fn form(formulation: &str) -> Form {
 
 /// One row per static `(integrator, formulation)` on chart `C`.
 macro_rules! static_rows {
-    ($rows:ident, $C:ty, $int:literal, [$($form:literal),*]) => {
+    ($rows:ident, $C:ty, $int:tt, [$($form:literal),*]) => {
         $(
-            $rows.push((<$C>::NAME, $int, $form, |s, dt, k| {
-                run_static::<$C>(s, form($form), algorithm($int), dt, k)
+            $rows.push((<$C>::NAME, $int, $form, static_info($int, solver!($int)(1.0, 1).expect("valid")), |s, dt, k| {
+                run_static::<$C, _>(s, form($form), solver!($int), dt, k)
             }));
         )*
     };
@@ -321,7 +350,12 @@ macro_rules! static_rows {
 /// the force-based element's path through c02's cycling step).
 macro_rules! chart_rows {
     ($rows:ident, $C:ty) => {
-        static_rows!($rows, $C, "newton_load", ["force_based", "force_based_fine"]);
+        static_rows!(
+            $rows,
+            $C,
+            "newton_load",
+            ["force_based", "force_based_fine"]
+        );
         static_rows!($rows, $C, "newton_disp", ["force_based"]);
         dynamic_rows!($rows, $C, ["newmark"]);
     };
@@ -329,10 +363,10 @@ macro_rules! chart_rows {
 
 /// One row per dynamic scheme on chart `C`, force-based.
 macro_rules! dynamic_rows {
-    ($rows:ident, $C:ty, [$($int:literal),*]) => {
+    ($rows:ident, $C:ty, [$($int:tt),*]) => {
         $(
-            $rows.push((<$C>::NAME, $int, "force_based", |s, dt, k| {
-                run_dynamic::<$C>(s, Form::ForceBased, scheme($int), dt, k)
+            $rows.push((<$C>::NAME, $int, "force_based", dynamic_info(scheme!($int)), |s, dt, k| {
+                run_dynamic::<$C, _>(s, Form::ForceBased, scheme!($int), dt, k)
             }));
         )*
     };
@@ -341,9 +375,24 @@ macro_rules! dynamic_rows {
 macro_rules! so3_rows {
     ($rows:ident) => {
         dynamic_rows!($rows, So3, ["newmark", "hht", "gen_alpha", "midpoint"]);
-        static_rows!($rows, So3, "newton_load", ["force_based", "force_based_fine"]);
-        static_rows!($rows, So3, "newton_disp", ["force_based", "disp_based_n1",
-            "disp_based_n2", "disp_based_n4", "disp_based_n8"]);
+        static_rows!(
+            $rows,
+            So3,
+            "newton_load",
+            ["force_based", "force_based_fine"]
+        );
+        static_rows!(
+            $rows,
+            So3,
+            "newton_disp",
+            [
+                "force_based",
+                "disp_based_n1",
+                "disp_based_n2",
+                "disp_based_n4",
+                "disp_based_n8"
+            ]
+        );
         static_rows!($rows, So3, "newton_disp_ls", ["force_based"]);
         static_rows!($rows, So3, "newton_disp_krylov", ["force_based"]);
     };
@@ -353,20 +402,20 @@ macro_rules! so3_rows {
 pub fn table() -> &'static [(Variant, RunFn)] {
     static TABLE: std::sync::OnceLock<Vec<(Variant, RunFn)>> = std::sync::OnceLock::new();
     TABLE.get_or_init(|| {
-        let mut rows: Vec<(&'static str, &'static str, &'static str, RunFn)> = vec![];
+        let mut rows: Vec<(&'static str, &'static str, &'static str, MethodInfo, RunFn)> = vec![];
         so3_rows!(rows);
         chart_rows!(rows, QuatProj);
         chart_rows!(rows, RotVec);
         chart_rows!(rows, MatrixProj);
         rows.into_iter()
             .enumerate()
-            .map(|(index, (param, integrator, formulation, run))| {
+            .map(|(index, (param, integrator, formulation, info, run))| {
                 (
                     Variant {
                         param,
                         integrator,
                         formulation,
-                        info: info(integrator),
+                        info,
                         index,
                     },
                     run,

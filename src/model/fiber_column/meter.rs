@@ -24,8 +24,8 @@
 //! assert!(m.elements(9, true).is_ok());
 //! assert!(m.assembly().unwrap_err().to_string().contains("max_rhs_evals = 10"));
 //! ```
-use super::column::NewtonFailure;
 use super::estimate::Mesh;
+use crate::structural::path::PathFailure;
 
 /// What a run may still spend, and what each unit of its progress costs.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,8 +67,8 @@ impl Meter {
     }
 
     /// The failure naming `max_rhs_evals` (`evals`) or `max_work`.
-    fn limit(&self, evals: bool) -> NewtonFailure {
-        NewtonFailure::WorkLimit(if evals {
+    fn limit(&self, evals: bool) -> PathFailure {
+        PathFailure::WorkLimit(if evals {
             format!(
                 "more than max_rhs_evals = {} state determinations and element iterations \
                  (cases/README.md, \"Budgets\")",
@@ -82,7 +82,7 @@ impl Meter {
         })
     }
 
-    fn over(&self) -> Option<NewtonFailure> {
+    fn over(&self) -> Option<PathFailure> {
         if self.evals > self.max_evals {
             Some(self.limit(true))
         } else if self.work > self.max_work as f64 {
@@ -94,14 +94,14 @@ impl Meter {
 
     /// Charges a Newton iteration's dense pass (its factor and solve); the failure when the
     /// run's budget does not cover it.
-    pub fn newton(&mut self) -> Result<(), NewtonFailure> {
+    pub fn newton(&mut self) -> Result<(), PathFailure> {
         self.work += self.dense;
         self.over().map_or(Ok(()), Err)
     }
 
     /// Charges a state determination (an assembly: of a Newton iteration, of a step's
     /// closing state, of an equilibrium check); its elements' iterations are charged apart.
-    pub fn assembly(&mut self) -> Result<(), NewtonFailure> {
+    pub fn assembly(&mut self) -> Result<(), PathFailure> {
         self.evals = self.evals.saturating_add(1);
         self.over().map_or(Ok(()), Err)
     }
@@ -128,7 +128,7 @@ impl Meter {
     /// Charges `n` element iterations, against `max_rhs_evals` too when `evals` (a
     /// force-based element's; a displacement-based element's update is part of its state
     /// determination and costs work only).
-    pub fn elements(&mut self, n: u64, evals: bool) -> Result<(), NewtonFailure> {
+    pub fn elements(&mut self, n: u64, evals: bool) -> Result<(), PathFailure> {
         if evals {
             self.evals = self.evals.saturating_add(n);
         }
@@ -138,7 +138,7 @@ impl Meter {
 
     /// The failure of an element stopped by [`Meter::element_allowance`]: the budget whose
     /// allowance ran out.
-    pub fn spent(&self) -> NewtonFailure {
+    pub fn spent(&self) -> PathFailure {
         self.over().unwrap_or_else(|| {
             let (by_evals, by_work) = self.allowances();
             self.limit(by_evals <= by_work)

@@ -9,9 +9,11 @@
 //! reverted state; `section.rs` the fiber and elastic sections and `layout.rs` their patches
 //! and bar layers; `quadrature.rs` the Lobatto and Legendre points; `basic.rs` the
 //! force-based and displacement-based elements in their basic system; `corotational.rs` the
-//! 3-D corotational transformation; `column.rs` the assembled cantilever and its Newton step (plain, line search, or
-//! Krylov-accelerated with `krylov.rs`); `dynamic.rs` the driver of the ground-motion scene
-//! (Newmark, HHT, generalized-alpha, energy-consistent midpoint; energy books; `omega1`);
+//! 3-D corotational transformation; `column.rs` the assembled cantilever as a path-dependent
+//! structure of the structural module (its steps solved by `structural::equilibrium`'s
+//! Newton, line search or Krylov-accelerated Newton); `dynamic.rs` the ground-motion scene as
+//! a system of the structural methods (`newmark`, `hht`, `gen_alpha`, `midpoint`: the
+//! structural module's; the energy books; `omega1`);
 //! `elastica.rs` the exact large-deflection cantilever (Bisshopp & Drucker) and the roll-up's circle, the
 //! static scenes' references. `column_tests.rs` checks the column against the elastica and
 //! the roll-up, `rc_tests.rs` and `pulse_tests.rs` against the stored OpenSees runs of the
@@ -41,7 +43,6 @@ pub mod elastica;
 mod elastica_opensees_tests;
 pub mod estimate;
 pub mod family;
-pub mod krylov;
 pub mod layout;
 pub mod material;
 pub mod meter;

@@ -237,7 +237,9 @@ impl Problem for FiberProblem {
         };
         let mut col = super::run::build::<crate::rotation::So3>(&self.setup, Form::ForceBased).ok()?;
         let mut log = super::run::Log::new(Keep::Final);
-        super::run::prelude(&mut col, &self.setup, &mut log).ok()?;
+        let num = &self.setup.case.numerics;
+        let mut newton = crate::structural::equilibrium::Newton::new(num.tol, num.max_iter).ok()?;
+        super::run::prelude(&mut col, &mut newton, &self.setup, &mut log).ok()?;
         let w = super::dynamic::omega1(&mut col, mass).ok()?;
         Some(std::f64::consts::TAU / w)
     }

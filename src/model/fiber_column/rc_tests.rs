@@ -3,14 +3,17 @@
 use nalgebra::DVector;
 
 use super::basic::{Basic, DispBased, ForceBased};
-use crate::rotation::{RotationChart, So3};
-use super::column::{Algorithm, Column, NewtonFailure, Prescribed};
+use super::column::Column;
 use super::layout::{Layer, Patch, fiber_section};
 use super::material::{
     Concrete01, Concrete01Params, Concrete02, Concrete02Params, Material, Steel01, Steel01Params,
     Steel02, Steel02Params,
 };
 use super::section::Section;
+use crate::rotation::{RotationChart, So3};
+use crate::structural::equilibrium::{Equilibrium, Newton, NewtonLineSearch};
+use crate::structural::krylov_newton::KrylovNewton;
+use crate::structural::path::{PathFailure, Prescribed};
 
 pub(super) const H: f64 = 3.0;
 pub(super) const P: f64 = 750e3;
@@ -166,21 +169,22 @@ struct Run {
     subdivisions: u64,
     seconds: f64,
     /// The step (1-based) that failed and why.
-    failure: Option<(usize, NewtonFailure)>,
+    failure: Option<(usize, PathFailure)>,
 }
 
-fn run_cyclic<C: RotationChart>(
+fn run_cyclic<C: RotationChart, E: Equilibrium<Column<C>>>(
     second: bool,
     elements: usize,
     force_based: bool,
-    algorithm: Algorithm,
+    mut algorithm: E,
 ) -> Run {
     let mut col: Column<C> = rc_column(second, elements, force_based);
     let mut f = DVector::zeros(col.dim());
     let tol = 1e-20;
     for k in 1..=10 {
         f[col.top_dof(2)] = -P * k as f64 / 10.0;
-        col.step(&f, None, tol, 50, Algorithm::Newton).unwrap();
+        col.step(&mut Newton::new(tol, 50).unwrap(), &f, None)
+            .unwrap();
     }
     let start = std::time::Instant::now();
     let mut out = Run {
@@ -195,7 +199,7 @@ fn run_cyclic<C: RotationChart>(
     };
     let dof = col.top_dof(0);
     for (k, u) in protocol().into_iter().enumerate() {
-        let (c, base) = match col.step(&f, Some(Prescribed { dof, value: u }), tol, 50, algorithm) {
+        let (c, base) = match col.step(&mut algorithm, &f, Some(Prescribed { dof, value: u })) {
             Ok(x) => x,
             Err(e) => {
                 out.failure = Some((k + 1, e));
@@ -240,11 +244,12 @@ fn dissipated(shear: &[f64], top: &[f64], axial: &[f64]) -> f64 {
     w
 }
 
-fn compare(scene: &str, second: bool, algorithm: Algorithm) -> Run {
+fn compare<E: Equilibrium<Column<So3>>>(scene: &str, second: bool, algorithm: E) -> Run {
+    let name = E::NAME;
     let r = reference(scene);
-    let run = run_cyclic::<So3>(second, 1, true, algorithm);
+    let run = run_cyclic::<So3, E>(second, 1, true, algorithm);
     if let Some((k, e)) = &run.failure {
-        eprintln!("{scene} ({algorithm:?}): step {k} failed: {e}");
+        eprintln!("{scene} ({name}): step {k} failed: {e}");
     }
     // Reference rows: 0 is the state after the axial prelude, row k after step k.
     let v_ref = reference_column(&r, "base_shear");
@@ -263,7 +268,7 @@ fn compare(scene: &str, second: bool, algorithm: Algorithm) -> Run {
         (0..run.shear.len()).find(|&k| (run.shear[k] - v_ref[k + 1]).abs() > 1e-9 * peak)
     {
         eprintln!(
-            "{scene} ({algorithm:?}): first departure beyond 1e-9 of the peak at step {} ({:e} of peak)",
+            "{scene} ({name}): first departure beyond 1e-9 of the peak at step {} ({:e} of peak)",
             k + 1,
             (run.shear[k] - v_ref[k + 1]) / peak
         );
@@ -278,7 +283,7 @@ fn compare(scene: &str, second: bool, algorithm: Algorithm) -> Run {
     let n = shear.len();
     let w_ref = dissipated(&v_ref[..n], &u_ref[..n], &a_ref[..n]);
     eprintln!(
-        "{scene} ({algorithm:?}): OpenSees {} iterations; base shear rms {rms:.3e}, max {:.3e} of peak {peak:.1} N; dissipated {w:.2} vs {w_ref:.2} J ({:.2e}); {} iterations, {} element iterations, {} subdivisions, {:.3} s",
+        "{scene} ({name}): OpenSees {} iterations; base shear rms {rms:.3e}, max {:.3e} of peak {peak:.1} N; dissipated {w:.2} vs {w_ref:.2} J ({:.2e}); {} iterations, {} element iterations, {} subdivisions, {:.3} s",
         r["iterations"]["total"],
         worst / peak,
         (w - w_ref) / w_ref,
@@ -300,7 +305,7 @@ fn compare(scene: &str, second: bool, algorithm: Algorithm) -> Run {
 // within 2 %.
 #[test]
 fn rc_cyclic_c01_matches_opensees() {
-    let run = compare("rc_cyclic_c01", false, Algorithm::Newton);
+    let run = compare("rc_cyclic_c01", false, Newton::new(1e-20, 50).unwrap());
     assert!(run.failure.is_none());
     assert_eq!(run.shear.len(), protocol().len());
 }
@@ -316,10 +321,10 @@ fn rc_cyclic_c01_matches_opensees() {
 // iterates decides which one is found.
 #[test]
 fn rc_cyclic_c02_plain_newton_stops_where_opensees_does() {
-    let run = compare("rc_cyclic_c02", true, Algorithm::Newton);
+    let run = compare("rc_cyclic_c02", true, Newton::new(1e-20, 50).unwrap());
     let (k, e) = run.failure.expect("plain Newton passes step 4154");
     assert_eq!(k, 4154);
-    assert!(matches!(e, NewtonFailure::NoConvergence { .. }), "{e}");
+    assert!(matches!(e, PathFailure::NoConvergence { .. }), "{e}");
 }
 
 // The energy line search (regula falsi on dx . r, the `_ls` variants) does not carry c02
@@ -328,10 +333,14 @@ fn rc_cyclic_c02_plain_newton_stops_where_opensees_does() {
 // within 1 % RMS of the peak.
 #[test]
 fn rc_cyclic_c02_line_search_stops_with_a_typed_failure() {
-    let run = compare("rc_cyclic_c02", true, Algorithm::LineSearch);
+    let run = compare(
+        "rc_cyclic_c02",
+        true,
+        NewtonLineSearch::new(1e-20, 50).unwrap(),
+    );
     let (k, e) = run.failure.expect("the line search completes c02");
     assert!(k < protocol().len());
-    assert!(matches!(e, NewtonFailure::NoConvergence { .. }), "{e}");
+    assert!(matches!(e, PathFailure::NoConvergence { .. }), "{e}");
 }
 
 // Krylov-accelerated Newton (the step's tangent reused, corrections accelerated over a
@@ -340,7 +349,7 @@ fn rc_cyclic_c02_line_search_stops_with_a_typed_failure() {
 // reference's base shear within 1 % RMS of the peak and its dissipated energy within 2 %.
 #[test]
 fn rc_cyclic_c02_krylov_passes_the_whole_protocol() {
-    let run = compare("rc_cyclic_c02", true, Algorithm::Krylov);
+    let run = compare("rc_cyclic_c02", true, KrylovNewton::new(1e-20, 50).unwrap());
     assert!(run.failure.is_none());
     assert_eq!(run.shear.len(), protocol().len());
 }
@@ -349,7 +358,11 @@ fn rc_cyclic_c02_krylov_passes_the_whole_protocol() {
 // within 1 % RMS of the peak and its dissipated energy within 2 %, over the whole protocol.
 #[test]
 fn rc_cyclic_c01_krylov_matches_opensees() {
-    let run = compare("rc_cyclic_c01", false, Algorithm::Krylov);
+    let run = compare(
+        "rc_cyclic_c01",
+        false,
+        KrylovNewton::new(1e-20, 50).unwrap(),
+    );
     assert!(run.failure.is_none());
     assert_eq!(run.shear.len(), protocol().len());
 }

@@ -27,14 +27,16 @@ use nalgebra::DVector;
 
 use super::basic::{Basic, DispBased, ForceBased};
 use super::case::{ColumnCase, ColumnScene, Loading};
-use crate::rotation::RotationChart;
-use super::column::{Algorithm, Column, NewtonFailure, Prescribed, StepCount};
+use super::column::{Column, StepCount};
 use super::estimate::Mesh;
 use super::meter::Meter;
 use super::section::Section;
 use crate::case::steps_dividing;
-use crate::integrate::{Failure, FailureKind, Stats};
+use crate::integrate::{Failure, Stats};
+use crate::rotation::RotationChart;
 use crate::run::Grid;
+use crate::structural::equilibrium::{Equilibrium, Newton};
+use crate::structural::path::{PathFailure, Prescribed};
 
 /// What a run function needs.
 #[derive(Debug, Clone)]
@@ -163,10 +165,10 @@ pub fn prelude_steps(loading: &Loading) -> u64 {
 /// it).
 pub(super) fn prelude<C: RotationChart>(
     col: &mut Column<C>,
+    newton: &mut Newton,
     s: &ColumnSetup,
     log: &mut Log,
-) -> Result<DVector<f64>, NewtonFailure> {
-    let num = &s.case.numerics;
+) -> Result<DVector<f64>, PathFailure> {
     let mut f = DVector::zeros(col.dim());
     let (axial, steps) = match s.scene.loading {
         Loading::Cyclic {
@@ -181,7 +183,7 @@ pub(super) fn prelude<C: RotationChart>(
     for j in 1..=steps {
         let (f0, z0) = (f[top], col.top_displacement().z);
         f[top] = -axial * j as f64 / steps as f64;
-        let (c, _) = col.step(&f, None, num.tol, num.max_iter, Algorithm::Newton)?;
+        let (c, _) = col.step(newton, &f, None)?;
         log.count(c);
         log.work += 0.5 * (f0 + f[top]) * (col.top_displacement().z - z0);
     }
@@ -202,7 +204,10 @@ pub(super) fn steps(s: &ColumnSetup, dt: f64) -> Result<(u64, u64, u64), String>
         )
     })?;
     let per_score = steps_dividing(g.score_every, dt).ok_or_else(|| {
-        format!("the step {dt} does not divide score_every = {}", g.score_every)
+        format!(
+            "the step {dt} does not divide score_every = {}",
+            g.score_every
+        )
     })?;
     let prelude = prelude_steps(&s.scene.loading);
     if n.saturating_add(prelude) > s.max_steps {
@@ -216,12 +221,8 @@ pub(super) fn steps(s: &ColumnSetup, dt: f64) -> Result<(u64, u64, u64), String>
 
 /// The typed failure of a step: `work_limit` when the run's budget stopped it, else
 /// `newton_failure`.
-pub(super) fn failure(t: f64, e: NewtonFailure) -> Failure {
-    let kind = match e {
-        NewtonFailure::WorkLimit(_) => FailureKind::WorkLimit,
-        _ => FailureKind::NewtonFailure,
-    };
-    Failure::new(kind, t, e.to_string())
+pub(super) fn failure(t: f64, e: PathFailure) -> Failure {
+    e.at(t)
 }
 
 /// The top's position at a step: displacement across and along the axis (m), turn (rad).
@@ -289,20 +290,27 @@ impl Log {
     }
 }
 
-/// Runs a static or cyclic scene with `algorithm` at step `dt`.
-pub fn run_static<C: RotationChart>(
+/// The constructor of a solution algorithm from the case's `numerics.tol` (J) and
+/// `max_iter` (`Newton::new` and its siblings).
+pub type Solver<E> = fn(f64, usize) -> Result<E, String>;
+
+/// Runs a static or cyclic scene with the algorithm `solver` makes at step `dt` (the axial
+/// prelude with plain Newton).
+pub fn run_static<C: RotationChart, E: Equilibrium<Column<C>>>(
     s: &ColumnSetup,
     form: Form,
-    algorithm: Algorithm,
+    solver: Solver<E>,
     dt: f64,
     keep: Keep,
 ) -> Result<RunOut, String> {
     let (n, per_sample, per_score) = steps(s, dt)?;
     let mut col = build::<C>(s, form)?;
     let num = &s.case.numerics;
+    let mut newton = Newton::new(num.tol, num.max_iter)?;
+    let mut algorithm = solver(num.tol, num.max_iter)?;
     let mut log = Log::new(keep);
     let mut out = RunOut::default();
-    let mut f = match prelude(&mut col, s, &mut log) {
+    let mut f = match prelude(&mut col, &mut newton, s, &mut log) {
         Ok(f) => f,
         Err(e) => {
             out.stats = log.stats;
@@ -355,7 +363,7 @@ pub fn run_static<C: RotationChart>(
         if let Some(d) = load_dof {
             f[d] = t * value;
         }
-        match col.step(&f, prescribed, num.tol, num.max_iter, algorithm) {
+        match col.step(&mut algorithm, &f, prescribed) {
             Ok((c, b)) => {
                 log.count(c);
                 base = b;

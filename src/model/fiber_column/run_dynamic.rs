@@ -1,7 +1,8 @@
 //! One run of the fiber column's dynamic scene: the column of a formulation (`run.rs`), its
-//! axial prelude, then the ground-acceleration pulse stepped by one scheme of `dynamic.rs`
-//! (Newmark, HHT, generalized-alpha, the energy-consistent midpoint rule) at a fixed step,
-//! observed at the sample times.
+//! axial prelude, then the ground-acceleration pulse stepped by one structural method
+//! (`newmark`, `hht`, `gen_alpha`, the energy-consistent `midpoint`: the structural module's,
+//! on the column as a path-dependent system, `dynamic.rs`) at a fixed step, its steps solved
+//! by Newton's iteration, observed at the sample times.
 //!
 //! The energies of a dynamic run count from `t = 0`, the state after the prelude
 //! (`dynamic.rs`, one trapezoid quadrature for every scheme): `energy_kinetic`, the change of
@@ -12,18 +13,23 @@
 //! is the run's `balance_max`.
 //!
 //! Where it fails: a step whose Newton iteration does not converge ends the run with a
-//! typed `newton_failure` at that step's `t`.
+//! typed `newton_failure` at the end of that step (the method's failure).
 use super::case::Loading;
+use super::column::Column;
+use super::dynamic::{Ground, Shaken, energies, ground_motion};
+use super::run::{ColumnObs, ColumnSetup, Form, Keep, Log, RunOut, build, failure, prelude, steps};
 use crate::rotation::RotationChart;
-use super::column::Algorithm;
-use super::dynamic::{Dynamic, Scheme};
-use super::run::{ColumnObs, Form, Keep, Log, RunOut, ColumnSetup, build, failure, prelude, steps};
+use crate::structural::equilibrium::Newton;
+use crate::structural::method::Method;
 
-/// Runs the dynamic scene with `scheme` at step `dt`.
-pub fn run_dynamic<C: RotationChart>(
+/// The system the dynamic scene's methods step on chart `C`.
+pub type Pulse<C> = Shaken<C, Newton, Ground>;
+
+/// Runs the dynamic scene with `method` at step `dt`.
+pub fn run_dynamic<C: RotationChart, M: Method<Pulse<C>>>(
     s: &ColumnSetup,
     form: Form,
-    scheme: Scheme,
+    mut method: M,
     dt: f64,
     keep: Keep,
 ) -> Result<RunOut, String> {
@@ -35,7 +41,8 @@ pub fn run_dynamic<C: RotationChart>(
     let num = &s.case.numerics;
     let mut log = Log::new(keep);
     let mut out = RunOut::default();
-    let f_static = match prelude(&mut col, s, &mut log) {
+    let mut newton = Newton::new(num.tol, num.max_iter)?;
+    let f_static = match prelude(&mut col, &mut newton, s, &mut log) {
         Ok(f) => f,
         Err(e) => {
             out.stats = log.stats;
@@ -43,13 +50,25 @@ pub fn run_dynamic<C: RotationChart>(
             return Ok(out);
         }
     };
-    let mut dy = Dynamic::new(col, f_static, mass, a0, scheme, dt)?;
-    let ground = |t: f64| s.scene.loading.ground(t);
-    let observe = |dy: &Dynamic<C>, t: f64| {
-        let c = dy.column();
+    let work0 = col.energies();
+    let ground = Ground(s.scene.loading.clone());
+    let mut p = ground_motion(col, f_static, mass, a0, newton, ground)?;
+    let mut state = method.new_state(&p);
+    if let Err(f) = method.init(&mut p, 0.0, &mut state, &mut log.stats) {
+        out.stats = log.stats;
+        out.failure = Some(f);
+        return Ok(out);
+    }
+    // The reaction is reported from the first step on (0 at t = 0, as the stored series).
+    let observe = |p: &Pulse<C>, t: f64| {
+        let c: &Column<C> = &p.system;
         let d = c.top_displacement();
-        let e = dy.energies();
-        let base = dy.base_reaction();
+        let e = energies(p, work0);
+        let base = if t > 0.0 {
+            c.base_reaction()
+        } else {
+            nalgebra::Vector3::zeros()
+        };
         ColumnObs {
             t,
             top_displacement: d.x,
@@ -64,23 +83,21 @@ pub fn run_dynamic<C: RotationChart>(
             equilibrium_residual: None,
         }
     };
-    let mut obs = observe(&dy, 0.0);
+    let mut obs = observe(&p, 0.0);
     if keep == Keep::Samples {
         log.samples.push(obs);
     }
     let mut balance_max = 0.0f64;
     for k in 1..=n {
         let t = k as f64 * dt;
-        match dy.step(&ground, num.tol, num.max_iter, Algorithm::Newton) {
-            Ok(c) => log.count(c),
-            Err(e) => {
-                out.failure = Some(failure(t, e));
-                break;
-            }
+        let t0 = (k - 1) as f64 * dt;
+        if let Err(f) = method.step(&mut p, t0, dt, &mut state, &mut log.stats) {
+            out.failure = Some(f);
+            break;
         }
-        balance_max = balance_max.max(dy.energies().balance().abs());
+        balance_max = balance_max.max(energies(&p, work0).balance().abs());
         if k % per_sample == 0 || k == n {
-            obs = observe(&dy, t);
+            obs = observe(&p, t);
             if keep == Keep::Samples && k % per_sample == 0 {
                 log.samples.push(obs);
             }

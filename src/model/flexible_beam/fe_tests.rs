@@ -236,15 +236,15 @@ fn spin_up_stays_bounded_and_integrators_agree() {
     let t_end = 20.0;
     let run_newmark = |h: f64| {
         let mut m = Newmark::new(NewtonOptions::default()).unwrap();
-        spin_up_tip(&fe, h, t_end, |s, t, h, st, stats| {
-            m.step(s, t, h, st, stats)
+        spin_up_tip(&fe, h, t_end, |mut s, t, h, st, stats| {
+            m.step(&mut s, t, h, st, stats)
         })
     };
     let (a, stats) = run_newmark(1e-2);
     let (b, _) = run_newmark(5e-3);
     let mut g = GenAlpha::new(0.9, NewtonOptions::default()).unwrap();
-    let (c, _) = spin_up_tip(&fe, 1e-2, t_end, |s, t, h, st, stats| {
-        g.step(s, t, h, st, stats)
+    let (c, _) = spin_up_tip(&fe, 1e-2, t_end, |mut s, t, h, st, stats| {
+        g.step(&mut s, t, h, st, stats)
     });
     let peak = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let diff = |x: &[f64], y: &[f64], stride: usize| {

@@ -84,15 +84,15 @@ fn unit(b: &Beam) -> f64 {
 
 /// Runs Newmark on `sys` from rest (consistent initial acceleration) with step `h` to
 /// `t_end`, calling `each(t, state)` at 0 and after every step.
-fn run<S: SecondOrder>(sys: &S, h: f64, t_end: f64, mut each: impl FnMut(f64, &State)) {
+fn run<S: SecondOrder>(mut sys: &S, h: f64, t_end: f64, mut each: impl FnMut(f64, &State)) {
     let mut nm = Newmark::new(NewtonOptions::default()).unwrap();
     let mut st = State::for_system(sys);
     let mut stats = Stats::default();
-    nm.init(sys, 0.0, &mut st, &mut stats).unwrap();
+    nm.init(&mut sys, 0.0, &mut st, &mut stats).unwrap();
     each(0.0, &st);
     let n = (t_end / h).round() as usize;
     for k in 0..n {
-        nm.step(sys, k as f64 * h, h, &mut st, &mut stats).unwrap();
+        nm.step(&mut sys, k as f64 * h, h, &mut st, &mut stats).unwrap();
         each((k + 1) as f64 * h, &st);
     }
 }

@@ -111,7 +111,7 @@ pub fn run_structural<S: Beamlike, M: Method<S>>(
             sys = build(base.on_segment(a, b))?;
         }
         let k_end = divides(b, h).ok_or_else(|| format!("step {h} does not divide {b}"))?;
-        if let Err(f) = method.init(&sys, a, &mut state, &mut out.stats) {
+        if let Err(f) = method.init(&mut sys, a, &mut state, &mut out.stats) {
             if out.samples.is_empty() {
                 out.samples.push(sample(&sys, a, &state, w));
             }
@@ -126,7 +126,7 @@ pub fn run_structural<S: Beamlike, M: Method<S>>(
             let t = k as f64 * h;
             let t1 = (k + 1) as f64 * h;
             let r = method
-                .step(&sys, t, h, &mut state, &mut out.stats)
+                .step(&mut sys, t, h, &mut state, &mut out.stats)
                 .and_then(|_| check_bound(t1, sys.tip_deflection(&state.q), bound))
                 .and_then(|_| limits.check(t1, &out.stats));
             if let Err(f) = r {

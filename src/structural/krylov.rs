@@ -52,7 +52,7 @@ impl Krylov {
     /// accelerated corrections solve it in `n + 1 = 3` iterations.
     ///
     /// ```
-    /// use mbdbench::model::fiber_column::krylov::Krylov;
+    /// use mbdbench::structural::krylov::Krylov;
     /// use nalgebra::{DMatrix, DVector};
     ///
     /// let a = DMatrix::from_row_slice(2, 2, &[4.0, 1.0, 2.0, 3.0]);
@@ -83,6 +83,11 @@ impl Krylov {
     /// Empties the subspace (a new step, or a refreshed tangent).
     pub fn reset(&mut self) {
         self.dim = 0;
+    }
+
+    /// The number of unknowns it was made for.
+    pub fn unknowns(&self) -> usize {
+        self.v[0].len()
     }
 
     /// The number of pairs the next acceleration will use.
