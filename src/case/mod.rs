@@ -122,6 +122,18 @@ pub struct CaseError {
     pub message: String,
 }
 
+impl CaseError {
+    /// An error on the `model` key of `case`: a case of another family handed to a family's
+    /// code.
+    pub fn model(case: &Case, message: impl Into<String>) -> Self {
+        CaseError {
+            file: case.file.clone(),
+            key: "model".into(),
+            message: message.into(),
+        }
+    }
+}
+
 impl fmt::Display for CaseError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.key.is_empty() {
@@ -300,6 +312,14 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The time grid of the scene's runs.
+    pub fn grid(&self) -> crate::run::Grid {
+        crate::run::Grid {
+            t_end: self.t_end,
+            sample_every: self.sample_every,
+            score_every: self.score_every,
+        }
+    }
     /// The ladder of a tier.
     pub fn ladder(&self, quick: bool) -> &Ladder {
         if quick { &self.quick } else { &self.ladders }
