@@ -81,6 +81,23 @@ pub struct Metric {
     pub higher_is_better: bool,
 }
 
+impl Metric {
+    /// A metric for which smaller is better (an error or a drift; everything but a
+    /// conditioning), an error against the reference when `reference_error`.
+    pub const fn smaller_better(
+        name: &'static str,
+        unit: &'static str,
+        reference_error: bool,
+    ) -> Metric {
+        Metric {
+            name,
+            unit,
+            reference_error,
+            higher_is_better: false,
+        }
+    }
+}
+
 /// One named column of a family's trajectories and references: `width` numbers per sample.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Column {
@@ -109,6 +126,29 @@ impl Variant {
             Stepping::Dt(value)
         }
     }
+}
+
+/// The variant table of a family whose only parameterization is `none`: each row
+/// `(integrator, formulation, info, run)` becomes its `Variant`, numbered in row order
+/// (`index` is its place in the table), beside its run function.
+pub fn none_param_table<R>(
+    rows: impl IntoIterator<Item = (&'static str, &'static str, MethodInfo, R)>,
+) -> Vec<(Variant, R)> {
+    rows.into_iter()
+        .enumerate()
+        .map(|(index, (integrator, formulation, info, run))| {
+            (
+                Variant {
+                    param: "none",
+                    integrator,
+                    formulation,
+                    info,
+                    index,
+                },
+                run,
+            )
+        })
+        .collect()
 }
 
 /// Compiles one scene of a validated case into a runnable problem.
