@@ -321,7 +321,7 @@ impl Outcome {
 /// `grid`, its `ladders` and `quick` ladders, and `reference: Option<(R, sha256)>` attached by
 /// `SceneHeader::load_reference`, and that rules out no registered variant on any scene
 /// (`na_reason` is `None`): `header` to `reference_sha256`, written once for the families
-/// built so (flexible_beam, spring_chain). Invoked inside their `impl Problem`.
+/// built so (flexible_beam among them). Invoked inside their `impl Problem`.
 macro_rules! scene_problem_methods {
     () => {
         fn header(&self) -> &$crate::problem::SceneHeader {
