@@ -243,6 +243,11 @@ pub fn summary() -> Summary {
     }
 }
 
+/// The page of the synthetic summary alone (no series files, no cases' figures, no advice).
+pub fn page() -> crate::report::Page {
+    crate::report::build_page(&summary(), Path::new("/nonexistent"), &[], None, None)
+}
+
 /// A fresh temporary directory for one test.
 pub fn temp_dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("mbdbench-report-{name}-{}", std::process::id()));
