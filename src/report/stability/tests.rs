@@ -1,7 +1,7 @@
 //! Tests of the stability section: tables, plots and facts of each part from fixture records.
 use super::*;
 use crate::report::{Extras, fixture, html, markdown, render_check, write_report};
-use crate::summary::{Env, FitRecord, Summary, run_id};
+use crate::summary::{FitRecord, Summary, run_id};
 
 fn rec(case: &str, scene: &str, p: &str, i: &str, metrics: &[(&str, Option<f64>)]) -> Record {
     let mut r = fixture::summary().records[0].clone();
@@ -126,23 +126,7 @@ pub fn stability_summary() -> Summary {
         ),
         fit("simo_wong", None, vec![[1e2, 0.0374], [1e4, 0.00374]]),
     ];
-    Summary {
-        schema: 1,
-        git_commit: "def5678".into(),
-        created_utc: "2026-01-02T04:00:00Z".into(),
-        env: Env {
-            rustc: "rustc 1.95.0".into(),
-            cpu: "Test CPU".into(),
-            os: "Test OS".into(),
-            profile: "release".into(),
-            threads: 2,
-            timing: None,
-            elapsed_s: None,
-        },
-        records,
-        fits,
-        selection: None,
-    }
+    fixture::summary_from("def5678", "2026-01-02T04:00:00Z", records, fits)
 }
 
 fn write_long_series(dir: &Path) {
