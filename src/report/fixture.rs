@@ -245,6 +245,15 @@ pub fn page() -> crate::report::Page {
     crate::report::build_page(&summary(), Path::new("/nonexistent"), &[], None, None)
 }
 
+/// The `<section>` of case `case` in a rendered page.
+pub fn case_section<'a>(html: &'a str, case: &str) -> &'a str {
+    let start = html
+        .find(&format!("<section class=\"case\" data-case=\"{case}\""))
+        .expect("case section");
+    let end = html[start..].find("</section>").unwrap() + start;
+    &html[start..end]
+}
+
 /// A fresh temporary directory for one test.
 pub fn temp_dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("mbdbench-report-{name}-{}", std::process::id()));

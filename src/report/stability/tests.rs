@@ -141,14 +141,6 @@ fn write_long_series(dir: &Path) {
     std::fs::write(p, v.to_string()).unwrap();
 }
 
-fn section_of<'a>(html: &'a str, case: &str) -> &'a str {
-    let start = html
-        .find(&format!("<section class=\"case\" data-case=\"{case}\""))
-        .expect("case section");
-    let end = html[start..].find("</section>").unwrap() + start;
-    &html[start..end]
-}
-
 /// The stability fixture renders, per case, its step tables (the cap visible as such, the
 /// Euler sentence, short reasons with the full text on hover and in the markdown), the
 /// stiffness-ladder plot with slopes and the unmeasured points in its caption, the
@@ -185,7 +177,7 @@ fn stability_fixture_renders_tables_and_plots() {
             assert!(n != "src" && n != "href" && !n.ends_with(":href"), "{n}");
         }
     }
-    let nine = section_of(&page, fixture::CASE);
+    let nine = fixture::case_section(&page, fixture::CASE);
     assert!(nine.contains("data-section=\"stability\""));
     assert!(nine.contains(&html::esc(EULER_NOTE)));
     assert_eq!(page.matches(&html::esc(EULER_NOTE)).count(), 1);
@@ -220,7 +212,7 @@ fn stability_fixture_renders_tables_and_plots() {
         "other records: sensitivity"
     );
     // Long horizon: both plots drawn from the series file, and the table.
-    let fb = section_of(&page, "free_body");
+    let fb = fixture::case_section(&page, "free_body");
     assert_eq!(fb.matches("<svg").count(), 2, "energy and momentum plots");
     assert!(fb.contains("so3 / rk4: p = 0.98"));
     assert!(fb.contains("free_body: long horizon"));
@@ -230,7 +222,7 @@ fn stability_fixture_renders_tables_and_plots() {
             .is_file()
     );
     // A case only in stability.json gets a section with its record.
-    let gl = section_of(&page, "gimbal_lock");
+    let gl = fixture::case_section(&page, "gimbal_lock");
     assert!(gl.contains("approach_distance") && gl.contains("<td>1e-3</td>"));
     // The stability tables are in the page; summary.md keeps the answer only.
     let md = std::fs::read_to_string(&files.summary_md).unwrap();
@@ -376,7 +368,7 @@ fn no_stability_no_part() {
     };
     let page = html::render(&crate::report::build_page(&s, &dir, &[], None, Some(src)));
     assert_eq!(render_check(&page), Vec::<String>::new());
-    let fb = section_of(&page, "free_body");
+    let fb = fixture::case_section(&page, "free_body");
     assert!(fb.contains("no series file"));
     assert!(fb.contains("<p class=\"nodata\">"));
     let _ = std::fs::remove_dir_all(&dir);
