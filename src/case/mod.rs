@@ -312,14 +312,6 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// The time grid of the scene's runs.
-    pub fn grid(&self) -> crate::run::Grid {
-        crate::run::Grid {
-            t_end: self.t_end,
-            sample_every: self.sample_every,
-            score_every: self.score_every,
-        }
-    }
     /// The ladder of a tier.
     pub fn ladder(&self, quick: bool) -> &Ladder {
         if quick { &self.quick } else { &self.ladders }

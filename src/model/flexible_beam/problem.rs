@@ -65,7 +65,7 @@ impl BeamProblem {
             setup: BeamSetup {
                 scene: s.clone(),
                 numerics: *n,
-                grid: scene.grid(),
+                grid: Grid::of_scene(scene),
                 limits: case.limits(),
             },
             ladders: scene.ladders.values(),

@@ -121,7 +121,7 @@ fn estimate(case: &Case, scene: &Scene) -> Estimate {
     if case.reference != ReferenceKind::NUMERICAL {
         return e;
     }
-    let grid = scene.grid();
+    let grid = crate::run::Grid::of_scene(scene);
     let h = super::refgen::reference_step(&grid, c.body.pivot_com.is_some());
     let key = format!("scene[{}].t_end", scene.index);
     let bytes = (scene.n_score + 1) as f64 * COSTS.bytes_per_sample;

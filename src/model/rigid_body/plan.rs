@@ -37,7 +37,7 @@ pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
         setup: RigidSetup {
             body,
             initial,
-            grid: s.grid(),
+            grid: crate::run::Grid::of_scene(s),
             limits,
             observe: crate::run::Observe::Grid,
         },

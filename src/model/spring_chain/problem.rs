@@ -110,7 +110,7 @@ impl ChainProblem {
             setup: ChainSetup {
                 chain: c.chain(),
                 initial: s.initial,
-                grid: scene.grid(),
+                grid: Grid::of_scene(scene),
                 limits: case.limits(),
             },
             ladders: scene.ladders.values(),
