@@ -134,6 +134,17 @@ pub struct Grid {
     pub score_every: f64,
 }
 
+impl Grid {
+    /// The time grid of `scene`'s runs.
+    pub fn of_scene(scene: &crate::case::Scene) -> Grid {
+        Grid {
+            t_end: scene.t_end,
+            sample_every: scene.sample_every,
+            score_every: scene.score_every,
+        }
+    }
+}
+
 /// One observation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sample<O> {

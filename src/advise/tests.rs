@@ -202,15 +202,7 @@ fn avoid_conditioning_and_drift() {
 /// The failure kinds' names are those the files write.
 #[test]
 fn failure_kind_names_match_the_files() {
-    for k in [
-        FailureKind::SingularChart,
-        FailureKind::NonFinite,
-        FailureKind::NewtonFailure,
-        FailureKind::StepSizeUnderflow,
-        FailureKind::WorkLimit,
-        FailureKind::Diverged,
-        FailureKind::BoundExceeded,
-    ] {
+    for k in FailureKind::ALL {
         assert_eq!(serde_json::to_value(k).unwrap(), k.name());
     }
 }

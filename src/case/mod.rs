@@ -122,6 +122,18 @@ pub struct CaseError {
     pub message: String,
 }
 
+impl CaseError {
+    /// An error on the `model` key of `case`: a case of another family handed to a family's
+    /// code.
+    pub fn model(case: &Case, message: impl Into<String>) -> Self {
+        CaseError {
+            file: case.file.clone(),
+            key: "model".into(),
+            message: message.into(),
+        }
+    }
+}
+
 impl fmt::Display for CaseError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.key.is_empty() {

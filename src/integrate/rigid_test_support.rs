@@ -5,7 +5,7 @@
 //! Runge-Kutta-Munthe-Kaas form on SO(3) x R^3, Munthe-Kaas 1998: fourth order, so at 1/64 of
 //! the tested step its error is some 1e-7 of the tested method's), the fixed-step run loop
 //! the caller uses (step, then normalize), the errors and invariants the tests measure, and
-//! the order-2 tests the second-order methods share (`order_two_tests!`).
+//! the tests the second-order methods share (`order_two_tests!`).
 use nalgebra::{Matrix3, Vector3};
 
 use super::{Failure, FixedStep, Stats, System};
@@ -280,8 +280,10 @@ pub(crate) fn assert_order_two<M: FixedStep<Sys>>(
     }
 }
 
-/// The three order-2 tests of a second-order rigid-body method, one per `OrderTwoProblem`, so
-/// that a failure names the method's module and the problem. In the method's test module:
+/// The tests every second-order rigid-body method shares: the three order-2 tests, one per
+/// `OrderTwoProblem`, so that a failure names the method's module and the problem; the heavy
+/// top's energy error (`assert_heavy_top_energy`); and the typed failures
+/// (`check_typed_failures`). In the method's test module:
 /// `ts::order_two_tests!("lgvi", Lgvi::new);` (a name for the messages, a constructor).
 macro_rules! order_two_tests {
     ($name:expr, $make:expr) => {
@@ -316,6 +318,18 @@ macro_rules! order_two_tests {
                 $make,
             );
         }
+
+        /// The heavy top runs 0.2 s at dt = 1e-3 with a relative energy error below 1e-3.
+        #[test]
+        fn heavy_top_energy() {
+            $crate::integrate::rigid_test_support::assert_heavy_top_energy($name, &mut $make());
+        }
+
+        /// Bad numbers end a step with a typed failure, never a panic.
+        #[test]
+        fn typed_failures() {
+            $crate::integrate::rigid_test_support::check_typed_failures($make);
+        }
     };
 }
 pub(crate) use order_two_tests;
@@ -341,6 +355,67 @@ pub(crate) fn energy_error_tenths<M: FixedStep<Sys>>(
     })
     .unwrap();
     (first, last)
+}
+
+/// The worst relative energy error `|E - E0| / E0` and the worst world angular momentum error
+/// `|L - L0|` over an `n`-step run of `m` (`run`), with its end state and stats.
+pub(crate) fn invariant_errors<M: FixedStep<Sys>>(
+    m: &mut M,
+    sys: &Sys,
+    x0: &St,
+    t_end: f64,
+    n: usize,
+) -> (f64, f64, St, Stats) {
+    let e0 = energy(sys, x0);
+    let l0 = momentum(sys, x0);
+    let (mut de, mut dl) = (0.0_f64, 0.0_f64);
+    let (x, st) = run(m, sys, x0, t_end, n, |_, x| {
+        de = de.max(((energy(sys, x) - e0) / e0).abs());
+        dl = dl.max((momentum(sys, x) - l0).norm());
+    })
+    .unwrap();
+    (de, dl, x, st)
+}
+
+/// Asserts that `m` (called `name` in the messages) keeps its energy error bounded over 1e5
+/// steps of 1e-2 from `x0` (`energy_error_tenths`: the last tenth's maximum at most twice the
+/// first's); returns the two maxima.
+pub(crate) fn assert_bounded_energy<M: FixedStep<Sys>>(
+    name: &str,
+    m: &mut M,
+    (sys, x0): (Sys, St),
+) -> (f64, f64) {
+    let (first, last) = energy_error_tenths(m, &sys, &x0, 1000.0, 100_000);
+    eprintln!("{name} 1e5 steps: max|dE| first 10% {first:.3e}, last 10% {last:.3e}");
+    assert!(last <= 2.0 * first, "{name}: {first} {last}");
+    (first, last)
+}
+
+/// Asserts that the heavy top runs 0.2 s at dt = 1e-3 under `m` (called `name`) with a
+/// relative energy error below 1e-3: a second-order method's energy error at this step is of
+/// the size of its relative state error, 8e-4 here (|Omega| = 150 rad/s; see the heavy-top
+/// order test). Prints the energy error at the end too (the drift).
+pub(crate) fn assert_heavy_top_energy<M: FixedStep<Sys>>(name: &str, m: &mut M) {
+    let (sys, x0) = heavy_top();
+    let (worst, _, x, st) = invariant_errors(m, &sys, &x0, 0.2, 200);
+    let e0 = energy(&sys, &x0);
+    let end = (energy(&sys, &x) - e0) / e0;
+    eprintln!(
+        "{name} heavy_top 0.2 s dt=1e-3: max relative |dE| {worst:.3e}, at the end {end:.3e}, \
+         stats {st:?}"
+    );
+    assert!(worst < 1e-3, "{name}: {worst:e}");
+}
+
+/// A step of `h` then one of `-h` from `three_springs`: the distance back to the start and the
+/// stats of the two steps.
+pub(crate) fn reversal<M: FixedStep<Sys>>(m: &mut M, h: f64) -> (f64, Stats) {
+    let (sys, x0) = three_springs();
+    let mut x = x0;
+    let mut st = Stats::default();
+    m.step(&sys, 0.0, h, &mut x, &mut st).unwrap();
+    m.step(&sys, h, -h, &mut x, &mut st).unwrap();
+    (distance(&x, &x0), st)
 }
 
 /// A method neither panics nor returns a wrong kind on bad input: a NaN state is `non_finite`,

@@ -26,6 +26,36 @@ pub fn observed_orders(errs: &[f64]) -> Vec<f64> {
     errs.windows(2).map(|w| (w[0] / w[1]).log2()).collect()
 }
 
+/// The observed orders of `errs` (`observed_orders`), printed under `label` with the errors;
+/// asserts that the last one is within 0.2 of `p` and returns them.
+pub fn assert_last_order(label: &str, errs: &[f64], p: f64) -> Vec<f64> {
+    let q = observed_orders(errs);
+    let (e_s, q_s) = (sci(errs), fixed(&q));
+    eprintln!("{label}: errors {e_s} orders {q_s}");
+    assert!((q.last().unwrap() - p).abs() < 0.2, "{label}");
+    q
+}
+
+/// Integrates with `n` fixed steps of `m` over `[0, t_end]` from `x0`, counting the steps and
+/// normalizing after each one (the run loop without its checks); the end state and the stats.
+pub fn run_fixed<S: System, M: FixedStep<S>>(
+    m: &mut M,
+    sys: &S,
+    x0: S::State,
+    t_end: f64,
+    n: usize,
+) -> (S::State, Stats) {
+    let mut x = x0;
+    let mut st = Stats::default();
+    let h = t_end / n as f64;
+    for k in 0..n {
+        m.step(sys, k as f64 * h, h, &mut x, &mut st).unwrap();
+        st.steps += 1;
+        sys.normalize(&mut x);
+    }
+    (x, st)
+}
+
 /// `[1.234e-5, ...]` for test output.
 pub fn sci(v: &[f64]) -> String {
     let s: Vec<String> = v.iter().map(|x| format!("{x:.3e}")).collect();

@@ -229,6 +229,16 @@ pub struct Figures {
 }
 
 impl Figures {
+    /// Every selection the family declares, in the order of the lists: work-precision,
+    /// convergence, time series, across scenes.
+    pub fn selections(&self) -> impl Iterator<Item = &'static Selection> {
+        self.work_precision
+            .iter()
+            .chain(self.convergence)
+            .chain(self.timeseries.iter().map(|(_, s)| s))
+            .chain(self.across_scenes.iter().map(|(s, _)| s))
+    }
+
     /// No plots: every list empty, no chart group, no physical view, failed runs left out,
     /// `t` in seconds, no colours of the family's own. A family declares the fields it uses
     /// and takes the rest from here (`..Figures::NONE`), so a new optional field is added

@@ -81,6 +81,23 @@ pub struct Metric {
     pub higher_is_better: bool,
 }
 
+impl Metric {
+    /// A metric for which smaller is better (an error or a drift; everything but a
+    /// conditioning), an error against the reference when `reference_error`.
+    pub const fn smaller_better(
+        name: &'static str,
+        unit: &'static str,
+        reference_error: bool,
+    ) -> Metric {
+        Metric {
+            name,
+            unit,
+            reference_error,
+            higher_is_better: false,
+        }
+    }
+}
+
 /// One named column of a family's trajectories and references: `width` numbers per sample.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Column {
@@ -109,6 +126,29 @@ impl Variant {
             Stepping::Dt(value)
         }
     }
+}
+
+/// The variant table of a family whose only parameterization is `none`: each row
+/// `(integrator, formulation, info, run)` becomes its `Variant`, numbered in row order
+/// (`index` is its place in the table), beside its run function.
+pub fn none_param_table<R>(
+    rows: impl IntoIterator<Item = (&'static str, &'static str, MethodInfo, R)>,
+) -> Vec<(Variant, R)> {
+    rows.into_iter()
+        .enumerate()
+        .map(|(index, (integrator, formulation, info, run))| {
+            (
+                Variant {
+                    param: "none",
+                    integrator,
+                    formulation,
+                    info,
+                    index,
+                },
+                run,
+            )
+        })
+        .collect()
 }
 
 /// Compiles one scene of a validated case into a runnable problem.
@@ -235,6 +275,17 @@ pub enum Want {
     Trajectory,
 }
 
+impl Want {
+    /// When a run that keeps this observes its state: only at the ends for the timing pass,
+    /// on the scene's grid otherwise.
+    pub fn observe(self) -> crate::run::Observe {
+        match self {
+            Want::Timing => crate::run::Observe::Final,
+            Want::Scored | Want::Trajectory => crate::run::Observe::Grid,
+        }
+    }
+}
+
 /// Samples as named columns (`t` first), each a flat list of `width` numbers per sample.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Columns {
@@ -254,6 +305,52 @@ pub struct Outcome {
     /// Some for `Want::Trajectory`.
     pub columns: Option<Columns>,
 }
+
+impl Outcome {
+    /// The work and the failure of a run, nothing scored yet (all that `Want::Timing` keeps).
+    pub fn of_run<O>(out: &crate::run::RunOutput<O>) -> Self {
+        Outcome {
+            stats: out.stats,
+            failure: out.failure.clone(),
+            ..Outcome::default()
+        }
+    }
+}
+
+/// The `Problem` methods of a family whose scene keeps its `header`, a `setup` holding the
+/// `grid`, its `ladders` and `quick` ladders, and `reference: Option<(R, sha256)>` attached by
+/// `SceneHeader::load_reference`, and that rules out no registered variant on any scene
+/// (`na_reason` is `None`): `header` to `reference_sha256`, written once for the families
+/// built so (flexible_beam among them). Invoked inside their `impl Problem`.
+macro_rules! scene_problem_methods {
+    () => {
+        fn header(&self) -> &$crate::problem::SceneHeader {
+            &self.header
+        }
+        fn grid(&self) -> &$crate::run::Grid {
+            &self.setup.grid
+        }
+        // The attached reference's times are the old grid's: dropped.
+        fn set_t_end(&mut self, t_end: f64) {
+            self.setup.grid.t_end = t_end;
+            self.reference = None;
+        }
+        fn ladder(&self, quick: bool, info: &$crate::integrate::MethodInfo) -> &[f64] {
+            if quick { &self.quick } else { &self.ladders }.for_method(info)
+        }
+        fn na_reason(&self, _v: &$crate::problem::Variant) -> Option<String> {
+            None
+        }
+        fn attach_reference(&mut self, root: &std::path::Path) -> Result<(), String> {
+            self.reference = Some(self.header.load_reference(root, &self.setup.grid)?);
+            Ok(())
+        }
+        fn reference_sha256(&self) -> Option<&str> {
+            self.reference.as_ref().map(|(_, sha)| sha.as_str())
+        }
+    };
+}
+pub(crate) use scene_problem_methods;
 
 /// One compiled scene of a case, ready to run any of its family's variants.
 ///

@@ -610,13 +610,7 @@ mod tests {
             block_b.contains("<i>diverged</i> (4): p0/rk4/body, p1/rk4/body, p2/rk4/body +1"),
             "{block_b}"
         );
-        let mut page = crate::report::build_page(
-            &crate::report::fixture::summary(),
-            std::path::Path::new("/nonexistent"),
-            &[],
-            None,
-            None,
-        );
+        let mut page = crate::report::fixture::page();
         page.advice = Some(a.clone());
         let rendered = crate::report::html::render(&page);
         assert_eq!(crate::report::render_check(&rendered), Vec::<String>::new());

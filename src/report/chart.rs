@@ -99,6 +99,28 @@ pub struct Plot {
     pub round_off: Option<String>,
 }
 
+impl Plot {
+    /// A plot of `lines` with one legend entry per line, no failure marks and no round-off
+    /// note, captioned `caption` over `footer`; the caller names it and labels and scales its
+    /// axes (`Plot { id, title, .., ..Plot::per_line(..) }`).
+    pub fn per_line(lines: Vec<Line>, caption: String, footer: &str) -> Plot {
+        Plot {
+            id: String::new(),
+            title: String::new(),
+            x_label: String::new(),
+            y_label: String::new(),
+            x: super::axes::Scale::Linear,
+            y: super::axes::Scale::Linear,
+            lines,
+            fails: vec![],
+            legend: Legend::PerLine,
+            caption,
+            footer: footer.into(),
+            round_off: None,
+        }
+    }
+}
+
 /// A rendered plot, or why there is none.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Rendered {

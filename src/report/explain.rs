@@ -187,13 +187,7 @@ mod tests {
     /// sentence, and the same sentence under another family stay where they are.
     #[test]
     fn shared_sentences_move_once() {
-        let mut page = crate::report::build_page(
-            &crate::report::fixture::summary(),
-            std::path::Path::new("/nonexistent"),
-            &[],
-            None,
-            None,
-        );
+        let mut page = crate::report::fixture::page();
         let c = &mut page.cases[0];
         let sc = &mut c.scenes[0];
         assert!(sc.work_precision.len() >= 2, "the fixture draws two plots");

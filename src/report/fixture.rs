@@ -7,7 +7,6 @@
 //! - `euler_zxz / rk4 / body` fails at every step in scene `large` (singular chart);
 //! - `euler_zxz / dopri5 / body` costs 10, 8.75 and 20 times `so3 / dopri5 / body`: the
 //!   largest ratio is 20 at tol 1e-8 in scene `two_angles`.
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use crate::integrate::{Failure, FailureKind, Stats};
@@ -88,23 +87,10 @@ fn record(
     tol: bool,
 ) -> Record {
     let (dt, tl) = if tol { (None, value) } else { (value, None) };
-    Record {
-        key: crate::summary::RunKey::new(CASE, scene, param, integ, form),
-        dt,
-        tol: tl,
-        status: Status::NotApplicable,
-        failure: None,
-        reason: None,
-        metrics: BTreeMap::new(),
-        metric_reasons: BTreeMap::new(),
-        stats: Stats::default(),
-        wall_s: None,
-        inputs_sha256: "0".repeat(64),
-        settings_sha256: None,
-        reference_sha256: None,
-        series: None,
-        series_reason: None,
-    }
+    let key = crate::summary::RunKey::new(CASE, scene, param, integ, form);
+    let mut r = Record::new(key, &"0".repeat(64));
+    (r.dt, r.tol) = (dt, tl);
+    r
 }
 
 fn ok(scene: &str, s: &Spec, i: usize) -> Record {
@@ -224,10 +210,21 @@ pub fn summary() -> Summary {
         na.reason = Some("the case has no translational degrees of freedom".into());
         records.push(na);
     }
+    summary_from("abc1234", "2026-01-02T03:04:05Z", records, fits)
+}
+
+/// A summary of `records` and `fits` made at `git_commit` and `created_utc`, with the fixed
+/// test environment (2 threads, a release profile, no timing).
+pub fn summary_from(
+    git_commit: &str,
+    created_utc: &str,
+    records: Vec<Record>,
+    fits: Vec<FitRecord>,
+) -> Summary {
     Summary {
         schema: 1,
-        git_commit: "abc1234".into(),
-        created_utc: "2026-01-02T03:04:05Z".into(),
+        git_commit: git_commit.into(),
+        created_utc: created_utc.into(),
         env: Env {
             rustc: "rustc 1.95.0".into(),
             cpu: "Test CPU".into(),
@@ -241,6 +238,20 @@ pub fn summary() -> Summary {
         fits,
         selection: None,
     }
+}
+
+/// The page of the synthetic summary alone (no series files, no cases' figures, no advice).
+pub fn page() -> crate::report::Page {
+    crate::report::build_page(&summary(), Path::new("/nonexistent"), &[], None, None)
+}
+
+/// The `<section>` of case `case` in a rendered page.
+pub fn case_section<'a>(html: &'a str, case: &str) -> &'a str {
+    let start = html
+        .find(&format!("<section class=\"case\" data-case=\"{case}\""))
+        .expect("case section");
+    let end = html[start..].find("</section>").unwrap() + start;
+    &html[start..end]
 }
 
 /// A fresh temporary directory for one test.

@@ -266,14 +266,7 @@ mod tests {
     #[test]
     fn panels_partition_and_stay_small() {
         for family in FAMILIES {
-            let f = family.figures;
-            let sels = f
-                .work_precision
-                .iter()
-                .chain(f.convergence)
-                .chain(f.timeseries.iter().map(|(_, s)| s))
-                .chain(f.across_scenes.iter().map(|(s, _)| s));
-            for &sel in sels {
+            for &sel in family.figures.selections() {
                 let ps = panels(sel, family);
                 for v in registered(family) {
                     let admitted = sel.admit.admits(v.param, v.integrator, v.info.adaptive)

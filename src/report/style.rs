@@ -227,14 +227,7 @@ mod tests {
         use crate::report::select::{is_twin, kind_of, panels};
         let mut sets: Vec<Vec<&'static str>> = vec![];
         for family in FAMILIES {
-            let f = family.figures;
-            let sels = f
-                .work_precision
-                .iter()
-                .chain(f.convergence)
-                .chain(f.timeseries.iter().map(|(_, s)| s))
-                .chain(f.across_scenes.iter().map(|(s, _)| s));
-            for &sel in sels {
+            for &sel in family.figures.selections() {
                 for p in panels(sel, family) {
                     let mut set: Vec<&'static str> = registered(family)
                         .filter(|v| {

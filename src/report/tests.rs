@@ -12,14 +12,6 @@ fn plots_of(c: &CaseSection) -> usize {
             .sum::<usize>()
 }
 
-fn case_html<'a>(html: &'a str, case: &str) -> &'a str {
-    let start = html
-        .find(&format!("<section class=\"case\" data-case=\"{case}\""))
-        .expect("case section");
-    let end = html[start..].find("</section>").unwrap() + start;
-    &html[start..end]
-}
-
 /// The page is self-contained (no src/href attribute, no script), holds one inline SVG per
 /// expected plot of the case, the tables and the environment line; every SVG is also a
 /// file; the markdown has the same tables.
@@ -47,7 +39,7 @@ fn page_is_self_contained_and_complete() {
         }
     }
     assert!(!html.contains(" src=") && !html.contains(" href="));
-    let sec = case_html(&html, fixture::CASE);
+    let sec = fixture::case_section(&html, fixture::CASE);
     let page = build_page(&s, &dir.join("series"), &cases, None, None);
     let expected = plots_of(&page.cases[0]);
     // Plots at round-off are one sentence instead of an SVG.
@@ -148,7 +140,7 @@ fn failed_na_and_missing_series_render() {
     let files = write_report(&s, &dir.join("nowhere"), &[], Extras::default(), &out).unwrap();
     let html = std::fs::read_to_string(&files.index_html).unwrap();
     assert_eq!(render_check(&html), Vec::<String>::new());
-    let sec = case_html(&html, fixture::CASE);
+    let sec = fixture::case_section(&html, fixture::CASE);
     let page = build_page(&s, &dir.join("nowhere"), &[], None, None);
     let timeseries: usize = page.cases[0]
         .scenes
@@ -201,7 +193,7 @@ fn failed_na_and_missing_series_render() {
         .filter(|f| nodata(f))
         .count();
     assert_eq!(
-        case_html(&html, fixture::CASE)
+        fixture::case_section(&html, fixture::CASE)
             .matches("<p class=\"nodata\">")
             .count(),
         all_nodata
@@ -466,7 +458,7 @@ fn case_parts_are_folded() {
     let cases = crate::catalogue::embedded().unwrap();
     let page = build_page(&s, std::path::Path::new("/nonexistent"), &cases, None, None);
     let html = html::render(&page);
-    let sec = case_html(&html, fixture::CASE);
+    let sec = fixture::case_section(&html, fixture::CASE);
     // Every part of the case but its narrative is folded and none opens by itself: the heat
     // maps (one per scene), each scene's plots, the tables.
     let heat = sec.find("data-section=\"heatmaps\"").expect("heat maps");

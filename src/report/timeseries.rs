@@ -385,12 +385,7 @@ fn track_plot(
         y_label: y_label.into(),
         x: Scale::Linear,
         y: Scale::Linear,
-        lines,
-        fails: vec![],
-        legend: Legend::PerLine,
-        caption,
-        footer: footer.into(),
-        round_off: None,
+        ..Plot::per_line(lines, caption, footer)
     })
 }
 

@@ -133,15 +133,6 @@ const FIGURES: Figures = Figures {
     ..Figures::NONE
 };
 
-const fn metric(name: &'static str, unit: &'static str, reference_error: bool) -> Metric {
-    Metric {
-        name,
-        unit,
-        reference_error,
-        higher_is_better: false,
-    }
-}
-
 const fn column(name: &'static str, unit: &'static str) -> Column {
     Column {
         name,
@@ -169,13 +160,13 @@ pub static FAMILY: Family = Family {
         formulations: FORMULATIONS,
     },
     metrics: &[
-        metric("tip_time_error_max", "m", true),
-        metric("tip_deflection_error_max", "m", true),
-        metric("hub_rate_error_max", "rad/s", true),
-        metric("energy_balance_error_max", "1", false),
-        metric("momentum_error_max", "1", false),
-        metric("constraint_error_max", "m", false),
-        metric("tip_deflection_max", "m", false),
+        Metric::smaller_better("tip_time_error_max", "m", true),
+        Metric::smaller_better("tip_deflection_error_max", "m", true),
+        Metric::smaller_better("hub_rate_error_max", "rad/s", true),
+        Metric::smaller_better("energy_balance_error_max", "1", false),
+        Metric::smaller_better("momentum_error_max", "1", false),
+        Metric::smaller_better("constraint_error_max", "m", false),
+        Metric::smaller_better("tip_deflection_max", "m", false),
     ],
     columns: &[
         column("tip_deflection", "m"),
@@ -446,21 +437,7 @@ pub fn table() -> &'static [(Variant, RunFn)] {
                 |base| Ok(formulations::model("aigc_index3", &s.numerics, s.scene.beam, base)?.0);
             structural(s, st, o, &build, GenAlphaI3::new(0.9, newton())?)
         }));
-        rows.into_iter()
-            .enumerate()
-            .map(|(index, (integrator, formulation, info, run))| {
-                (
-                    Variant {
-                        param: "none",
-                        integrator,
-                        formulation,
-                        info,
-                        index,
-                    },
-                    run,
-                )
-            })
-            .collect()
+        crate::problem::none_param_table(rows)
     })
 }
 

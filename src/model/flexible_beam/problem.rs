@@ -21,7 +21,7 @@ use super::family::{FAMILY, table};
 use super::observe::{BeamObs, balance};
 use super::reference::BeamReference;
 use crate::case::{Case, CaseError, Scene};
-use crate::integrate::{Limits, MethodInfo};
+use crate::integrate::Limits;
 use crate::metrics::Scores;
 use crate::problem::{Columns, Outcome, Problem, SceneHeader, Stepping, Variant, Want};
 use crate::run::{Grid, Observe, RunOutput};
@@ -58,22 +58,14 @@ impl BeamProblem {
     pub fn new(case: &Case, scene: &Scene) -> Result<Self, CaseError> {
         let (Some(n), Some(s)) = (case.physics::<Numerics>(), scene.physics::<BeamScene>())
         else {
-            return Err(CaseError {
-                file: case.file.clone(),
-                key: "model".into(),
-                message: "not a flexible-beam case".into(),
-            });
+            return Err(CaseError::model(case, "not a flexible-beam case"));
         };
         Ok(BeamProblem {
             header: SceneHeader::new(&FAMILY, case, scene),
             setup: BeamSetup {
                 scene: s.clone(),
                 numerics: *n,
-                grid: Grid {
-                    t_end: scene.t_end,
-                    sample_every: scene.sample_every,
-                    score_every: scene.score_every,
-                },
+                grid: Grid::of_scene(scene),
                 limits: case.limits(),
             },
             ladders: scene.ladders.values(),
@@ -344,32 +336,7 @@ impl BeamProblem {
 }
 
 impl Problem for BeamProblem {
-    fn header(&self) -> &SceneHeader {
-        &self.header
-    }
-    fn grid(&self) -> &Grid {
-        &self.setup.grid
-    }
-    // The attached reference's times are the old grid's: dropped.
-    fn set_t_end(&mut self, t_end: f64) {
-        self.setup.grid.t_end = t_end;
-        self.reference = None;
-    }
-    fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64] {
-        if quick { &self.quick } else { &self.ladders }.for_method(info)
-    }
-    fn na_reason(&self, _v: &Variant) -> Option<String> {
-        None
-    }
-    fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
-        let (r, sha): (BeamReference, String) =
-            self.header.load_reference(root, &self.setup.grid)?;
-        self.reference = Some((r, sha));
-        Ok(())
-    }
-    fn reference_sha256(&self) -> Option<&str> {
-        self.reference.as_ref().map(|(_, sha)| sha.as_str())
-    }
+    crate::problem::scene_problem_methods!();
     fn accuracy_claim(&self, metric: &str) -> Option<f64> {
         let (r, _) = self.reference.as_ref()?;
         match metric {
@@ -421,16 +388,8 @@ impl Problem for BeamProblem {
         Some(2.0 * std::f64::consts::PI / omega)
     }
     fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String> {
-        let observe = match want {
-            Want::Timing => Observe::Final,
-            Want::Scored | Want::Trajectory => Observe::Grid,
-        };
-        let out = Self::run_with(&self.setup, v, stepping, &observe)?;
-        let mut o = Outcome {
-            stats: out.stats,
-            failure: out.failure.clone(),
-            ..Outcome::default()
-        };
+        let out = Self::run_with(&self.setup, v, stepping, &want.observe())?;
+        let mut o = Outcome::of_run(&out);
         if want != Want::Timing {
             let (scores, series) = self.score(v, &out);
             o.scores = scores;

@@ -144,11 +144,10 @@ impl RigidScene {
 fn parts<'a>(case: &'a Case, scene: &'a Scene) -> Res<(&'a RigidCase, &'a RigidScene)> {
     match (RigidCase::of(case), RigidScene::of(scene)) {
         (Some(c), Some(s)) => Ok((c, s)),
-        _ => Err(CaseError {
-            file: case.file.clone(),
-            key: "model".into(),
-            message: format!("`{}` is not a rigid-body case", case.model()),
-        }),
+        _ => Err(CaseError::model(
+            case,
+            format!("`{}` is not a rigid-body case", case.model()),
+        )),
     }
 }
 

@@ -35,54 +35,14 @@ pub static FAMILY: Family = Family {
 
 /// The metrics of rigid-body cases (cases/README.md, "Rigid-body metrics").
 pub const METRICS: &[Metric] = &[
-    Metric {
-        name: "position_error_max",
-        unit: "m",
-        reference_error: true,
-        higher_is_better: false,
-    },
-    Metric {
-        name: "rotation_error_max",
-        unit: "rad",
-        reference_error: true,
-        higher_is_better: false,
-    },
-    Metric {
-        name: "velocity_error_max",
-        unit: "m/s",
-        reference_error: true,
-        higher_is_better: false,
-    },
-    Metric {
-        name: "omega_error_max",
-        unit: "rad/s",
-        reference_error: true,
-        higher_is_better: false,
-    },
-    Metric {
-        name: "energy_drift_max",
-        unit: "1",
-        reference_error: false,
-        higher_is_better: false,
-    },
-    Metric {
-        name: "energy_drift_final",
-        unit: "1",
-        reference_error: false,
-        higher_is_better: false,
-    },
-    Metric {
-        name: "momentum_drift_max",
-        unit: "1",
-        reference_error: false,
-        higher_is_better: false,
-    },
-    Metric {
-        name: "constraint_error_max",
-        unit: "1",
-        reference_error: false,
-        higher_is_better: false,
-    },
+    Metric::smaller_better("position_error_max", "m", true),
+    Metric::smaller_better("rotation_error_max", "rad", true),
+    Metric::smaller_better("velocity_error_max", "m/s", true),
+    Metric::smaller_better("omega_error_max", "rad/s", true),
+    Metric::smaller_better("energy_drift_max", "1", false),
+    Metric::smaller_better("energy_drift_final", "1", false),
+    Metric::smaller_better("momentum_drift_max", "1", false),
+    Metric::smaller_better("constraint_error_max", "1", false),
     Metric {
         name: "conditioning_min",
         unit: "1",
@@ -161,11 +121,7 @@ fn estimate(case: &Case, scene: &Scene) -> Estimate {
     if case.reference != ReferenceKind::NUMERICAL {
         return e;
     }
-    let grid = crate::run::Grid {
-        t_end: scene.t_end,
-        sample_every: scene.sample_every,
-        score_every: scene.score_every,
-    };
+    let grid = crate::run::Grid::of_scene(scene);
     let h = super::refgen::reference_step(&grid, c.body.pivot_com.is_some());
     let key = format!("scene[{}].t_end", scene.index);
     let bytes = (scene.n_score + 1) as f64 * COSTS.bytes_per_sample;

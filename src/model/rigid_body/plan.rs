@@ -5,7 +5,6 @@
 //! the scene when the scene is not a rigid-body scene.
 use crate::case::{self, Case, Scene};
 use crate::problem::SceneHeader;
-use crate::run::Grid;
 use crate::case::Ladders;
 
 use super::case as rigid_case;
@@ -38,11 +37,7 @@ pub fn scene_plan(c: &Case, s: &Scene) -> Result<ScenePlan, case::CaseError> {
         setup: RigidSetup {
             body,
             initial,
-            grid: Grid {
-                t_end: s.t_end,
-                sample_every: s.sample_every,
-                score_every: s.score_every,
-            },
+            grid: crate::run::Grid::of_scene(s),
             limits,
             observe: crate::run::Observe::Grid,
         },

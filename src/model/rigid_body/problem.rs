@@ -113,11 +113,7 @@ impl Problem for RigidProblem {
             Want::Scored | Want::Trajectory => &self.plan.setup,
         };
         let out = (rv.run)(setup, value(stepping))?;
-        let mut o = Outcome {
-            stats: out.stats,
-            failure: out.failure.clone(),
-            ..Outcome::default()
-        };
+        let mut o = Outcome::of_run(&out);
         match want {
             Want::Timing => {}
             Want::Scored => {

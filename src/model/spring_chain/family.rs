@@ -45,30 +45,10 @@ pub static FAMILY: Family = Family {
         formulations: &["chain_nodal", "chain_modal"],
     },
     metrics: &[
-        Metric {
-            name: "displacement_error_max",
-            unit: "m",
-            reference_error: true,
-            higher_is_better: false,
-        },
-        Metric {
-            name: "velocity_error_max",
-            unit: "m/s",
-            reference_error: true,
-            higher_is_better: false,
-        },
-        Metric {
-            name: "energy_drift_max",
-            unit: "1",
-            reference_error: false,
-            higher_is_better: false,
-        },
-        Metric {
-            name: "energy_drift_final",
-            unit: "1",
-            reference_error: false,
-            higher_is_better: false,
-        },
+        Metric::smaller_better("displacement_error_max", "m", true),
+        Metric::smaller_better("velocity_error_max", "m/s", true),
+        Metric::smaller_better("energy_drift_max", "1", false),
+        Metric::smaller_better("energy_drift_final", "1", false),
     ],
     columns: &[
         Column {
@@ -155,21 +135,7 @@ pub fn table() -> &'static [(Variant, RunFn)] {
                 fixed::<Modal, _>(s, h, o, StormerVerlet::new())
             }),
         ];
-        rows.into_iter()
-            .enumerate()
-            .map(|(index, (integrator, formulation, info, run))| {
-                (
-                    Variant {
-                        param: "none",
-                        integrator,
-                        formulation,
-                        info,
-                        index,
-                    },
-                    run,
-                )
-            })
-            .collect()
+        crate::problem::none_param_table(rows)
     })
 }
 

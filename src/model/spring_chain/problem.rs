@@ -12,7 +12,7 @@ use super::case::{ChainCase, ChainScene};
 use super::family::{FAMILY, table};
 use super::{Chain, ChainObs};
 use crate::case::{Case, CaseError, Scene};
-use crate::integrate::{Limits, MethodInfo};
+use crate::integrate::Limits;
 use crate::metrics::{Scores, energy_drift};
 use crate::problem::{Columns, Outcome, Problem, SceneHeader, Stepping, Variant, Want};
 use crate::reference::{self, Stored};
@@ -102,11 +102,7 @@ impl ChainProblem {
     pub fn new(case: &Case, scene: &Scene) -> Result<Self, CaseError> {
         let (Some(c), Some(s)) = (case.physics::<ChainCase>(), scene.physics::<ChainScene>())
         else {
-            return Err(CaseError {
-                file: case.file.clone(),
-                key: "model".into(),
-                message: "not a spring-chain case".into(),
-            });
+            return Err(CaseError::model(case, "not a spring-chain case"));
         };
         Ok(ChainProblem {
             header: SceneHeader::new(&FAMILY, case, scene),
@@ -114,11 +110,7 @@ impl ChainProblem {
             setup: ChainSetup {
                 chain: c.chain(),
                 initial: s.initial,
-                grid: Grid {
-                    t_end: scene.t_end,
-                    sample_every: scene.sample_every,
-                    score_every: scene.score_every,
-                },
+                grid: Grid::of_scene(scene),
                 limits: case.limits(),
             },
             ladders: scene.ladders.values(),
@@ -175,32 +167,7 @@ fn stored_track(r: &ChainReference) -> Vec<ChainObs> {
 }
 
 impl Problem for ChainProblem {
-    fn header(&self) -> &SceneHeader {
-        &self.header
-    }
-    fn grid(&self) -> &Grid {
-        &self.setup.grid
-    }
-    // The attached reference's times are the old grid's: dropped.
-    fn set_t_end(&mut self, t_end: f64) {
-        self.setup.grid.t_end = t_end;
-        self.reference = None;
-    }
-    fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64] {
-        if quick { &self.quick } else { &self.ladders }.for_method(info)
-    }
-    fn na_reason(&self, _v: &Variant) -> Option<String> {
-        None
-    }
-    fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
-        let (r, sha): (ChainReference, String) =
-            self.header.load_reference(root, &self.setup.grid)?;
-        self.reference = Some((r, sha));
-        Ok(())
-    }
-    fn reference_sha256(&self) -> Option<&str> {
-        self.reference.as_ref().map(|(_, sha)| sha.as_str())
-    }
+    crate::problem::scene_problem_methods!();
     fn accuracy_claim(&self, metric: &str) -> Option<f64> {
         let (r, _) = self.reference.as_ref()?;
         Some(match metric {
@@ -209,16 +176,8 @@ impl Problem for ChainProblem {
         })
     }
     fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String> {
-        let observe = match want {
-            Want::Timing => Observe::Final,
-            Want::Scored | Want::Trajectory => Observe::Grid,
-        };
-        let out = self.run_raw(v, stepping, &observe)?;
-        let mut o = Outcome {
-            stats: out.stats,
-            failure: out.failure.clone(),
-            ..Outcome::default()
-        };
+        let out = self.run_raw(v, stepping, &want.observe())?;
+        let mut o = Outcome::of_run(&out);
         match want {
             Want::Timing => {}
             Want::Scored => {

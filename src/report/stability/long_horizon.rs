@@ -149,12 +149,7 @@ pub(super) fn long_plots(
             y_label: y.into(),
             x: Scale::Log,
             y: Scale::Log,
-            lines,
-            fails: vec![],
-            legend: Legend::PerLine,
-            caption,
-            footer: footer.into(),
-            round_off: None,
+            ..Plot::per_line(lines, caption, footer)
         });
     }
     out

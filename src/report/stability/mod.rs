@@ -32,7 +32,7 @@ use super::Figure;
 use super::axes::Scale;
 use super::tables::{Cell, Table, kind_name};
 use crate::case::Case;
-use crate::report::chart::{Legend, Line, Plot};
+use crate::report::chart::{Line, Plot};
 use crate::report::data::{VariantKey, num, time};
 use crate::summary::{FitRecord, Record, Status, Summary};
 

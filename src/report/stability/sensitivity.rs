@@ -69,11 +69,6 @@ pub(super) fn sensitivity_plot(
         y_label: "growth G(t)".into(),
         x: Scale::Linear,
         y: Scale::Log,
-        lines,
-        fails: vec![],
-        legend: Legend::PerLine,
-        caption,
-        footer: footer.into(),
-        round_off: None,
+        ..Plot::per_line(lines, caption, footer)
     })
 }

@@ -146,12 +146,8 @@ pub(super) fn singularity_plots(case: &str, rs: &[&Record], footer: &str) -> Vec
                 y_label: y_label.into(),
                 x: Scale::Log,
                 y: Scale::Log,
-                lines,
                 fails,
-                legend: Legend::PerLine,
-                caption,
-                footer: footer.into(),
-                round_off: None,
+                ..Plot::per_line(lines, caption, footer)
             });
         }
     }

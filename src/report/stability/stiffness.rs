@@ -124,12 +124,7 @@ pub(super) fn ladder_plots(
             y_label,
             x: Scale::Log,
             y: Scale::Log,
-            lines,
-            fails: vec![],
-            legend: Legend::PerLine,
-            caption,
-            footer: footer.into(),
-            round_off: None,
+            ..Plot::per_line(lines, caption, footer)
         });
     }
     out

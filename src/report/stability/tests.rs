@@ -1,7 +1,7 @@
 //! Tests of the stability section: tables, plots and facts of each part from fixture records.
 use super::*;
 use crate::report::{Extras, fixture, html, markdown, render_check, write_report};
-use crate::summary::{Env, FitRecord, Summary, run_id};
+use crate::summary::{FitRecord, Summary, run_id};
 
 fn rec(case: &str, scene: &str, p: &str, i: &str, metrics: &[(&str, Option<f64>)]) -> Record {
     let mut r = fixture::summary().records[0].clone();
@@ -126,23 +126,7 @@ pub fn stability_summary() -> Summary {
         ),
         fit("simo_wong", None, vec![[1e2, 0.0374], [1e4, 0.00374]]),
     ];
-    Summary {
-        schema: 1,
-        git_commit: "def5678".into(),
-        created_utc: "2026-01-02T04:00:00Z".into(),
-        env: Env {
-            rustc: "rustc 1.95.0".into(),
-            cpu: "Test CPU".into(),
-            os: "Test OS".into(),
-            profile: "release".into(),
-            threads: 2,
-            timing: None,
-            elapsed_s: None,
-        },
-        records,
-        fits,
-        selection: None,
-    }
+    fixture::summary_from("def5678", "2026-01-02T04:00:00Z", records, fits)
 }
 
 fn write_long_series(dir: &Path) {
@@ -155,14 +139,6 @@ fn write_long_series(dir: &Path) {
     let e: Vec<f64> = t.iter().map(|x| 1e-13 * x).collect();
     let v = serde_json::json!({"t": t, "energy_error": e, "momentum_error": e});
     std::fs::write(p, v.to_string()).unwrap();
-}
-
-fn section_of<'a>(html: &'a str, case: &str) -> &'a str {
-    let start = html
-        .find(&format!("<section class=\"case\" data-case=\"{case}\""))
-        .expect("case section");
-    let end = html[start..].find("</section>").unwrap() + start;
-    &html[start..end]
 }
 
 /// The stability fixture renders, per case, its step tables (the cap visible as such, the
@@ -201,7 +177,7 @@ fn stability_fixture_renders_tables_and_plots() {
             assert!(n != "src" && n != "href" && !n.ends_with(":href"), "{n}");
         }
     }
-    let nine = section_of(&page, fixture::CASE);
+    let nine = fixture::case_section(&page, fixture::CASE);
     assert!(nine.contains("data-section=\"stability\""));
     assert!(nine.contains(&html::esc(EULER_NOTE)));
     assert_eq!(page.matches(&html::esc(EULER_NOTE)).count(), 1);
@@ -236,7 +212,7 @@ fn stability_fixture_renders_tables_and_plots() {
         "other records: sensitivity"
     );
     // Long horizon: both plots drawn from the series file, and the table.
-    let fb = section_of(&page, "free_body");
+    let fb = fixture::case_section(&page, "free_body");
     assert_eq!(fb.matches("<svg").count(), 2, "energy and momentum plots");
     assert!(fb.contains("so3 / rk4: p = 0.98"));
     assert!(fb.contains("free_body: long horizon"));
@@ -246,7 +222,7 @@ fn stability_fixture_renders_tables_and_plots() {
             .is_file()
     );
     // A case only in stability.json gets a section with its record.
-    let gl = section_of(&page, "gimbal_lock");
+    let gl = fixture::case_section(&page, "gimbal_lock");
     assert!(gl.contains("approach_distance") && gl.contains("<td>1e-3</td>"));
     // The stability tables are in the page; summary.md keeps the answer only.
     let md = std::fs::read_to_string(&files.summary_md).unwrap();
@@ -392,7 +368,7 @@ fn no_stability_no_part() {
     };
     let page = html::render(&crate::report::build_page(&s, &dir, &[], None, Some(src)));
     assert_eq!(render_check(&page), Vec::<String>::new());
-    let fb = section_of(&page, "free_body");
+    let fb = fixture::case_section(&page, "free_body");
     assert!(fb.contains("no series file"));
     assert!(fb.contains("<p class=\"nodata\">"));
     let _ = std::fs::remove_dir_all(&dir);

@@ -143,7 +143,6 @@ impl FreeFlow<RigidSystem<So3, Body>> for MoserVeselov {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrate::FixedStep;
     use crate::integrate::rigid_test_support as ts;
 
     /// The Cayley solve satisfies the matrix equation (1): F J_d - J_d F^T = [a]x, F in SO(3).
@@ -181,63 +180,23 @@ mod tests {
         let (first, last) = ts::energy_error_tenths(&mut m, &sys, &x0, 1000.0, n);
         eprintln!("lgvi gni 1e5 steps: max|dE| first 10% {first:.3e}, last 10% {last:.3e}");
         assert!(first.max(last) <= n as f64 * f64::EPSILON * e0);
-        let l0 = ts::momentum(&sys, &x0);
-        let mut m = Lgvi::new();
-        let mut worst = 0.0_f64;
-        ts::run(&mut m, &sys, &x0, 100.0, 10_000, |_, x| {
-            worst = worst.max((ts::momentum(&sys, x) - l0).norm());
-        })
-        .unwrap();
+        let (_, worst, _, _) = ts::invariant_errors(&mut Lgvi::new(), &sys, &x0, 100.0, 10_000);
         eprintln!("lgvi gni 1e4 steps: max |dL| {worst:.3e}");
-        assert!(worst <= 1e4 * f64::EPSILON * l0.norm());
+        assert!(worst <= 1e4 * f64::EPSILON * ts::momentum(&sys, &x0).norm());
     }
 
     /// Symplectic: where the energy is not conserved exactly (three springs and gravity), its
     /// error stays bounded over 1e5 steps (last tenth <= 2 x first tenth).
     #[test]
     fn bounded_energy_three_springs() {
-        let (sys, x0) = ts::three_springs();
-        let mut m = Lgvi::new();
-        let (first, last) = ts::energy_error_tenths(&mut m, &sys, &x0, 1000.0, 100_000);
-        eprintln!(
-            "lgvi three_springs 1e5 steps: max|dE| first 10% {first:.3e}, last 10% {last:.3e}"
-        );
-        assert!(last <= 2.0 * first, "{first} {last}");
+        ts::assert_bounded_energy("lgvi three_springs", &mut Lgvi::new(), ts::three_springs());
     }
 
     /// Time-reversible: h then -h returns to the start (round-off), with 3 force evaluations.
     #[test]
     fn time_reversible() {
-        let (sys, x0) = ts::three_springs();
-        let mut m = Lgvi::new();
-        let mut x = x0;
-        let mut st = Stats::default();
-        m.step(&sys, 0.0, 0.05, &mut x, &mut st).unwrap();
-        m.step(&sys, 0.05, -0.05, &mut x, &mut st).unwrap();
-        assert!(ts::distance(&x, &x0) < 1e-13, "{}", ts::distance(&x, &x0));
+        let (d, st) = ts::reversal(&mut Lgvi::new(), 0.05);
+        assert!(d < 1e-13, "{d}");
         assert_eq!(st.rhs_evals, 3);
-    }
-
-    /// The heavy top runs 0.2 s at dt = 1e-3 with a small bounded energy error.
-    #[test]
-    fn heavy_top_runs() {
-        let (sys, x0) = ts::heavy_top();
-        let e0 = ts::energy(&sys, &x0);
-        let mut m = Lgvi::new();
-        let mut worst = 0.0_f64;
-        let (_, st) = ts::run(&mut m, &sys, &x0, 0.2, 200, |_, x| {
-            worst = worst.max(((ts::energy(&sys, x) - e0) / e0).abs());
-        })
-        .unwrap();
-        eprintln!("lgvi heavy_top 0.2 s dt=1e-3: max relative |dE| {worst:.3e}, stats {st:?}");
-        // A second-order method's energy error at this step is of the size of its relative
-        // state error, 8e-4 here (|Omega| = 150 rad/s; see the heavy-top order test).
-        assert!(worst < 1e-3);
-    }
-
-    /// Bad numbers end a step with a typed failure, never a panic.
-    #[test]
-    fn typed_failures() {
-        ts::check_typed_failures(Lgvi::new);
     }
 }

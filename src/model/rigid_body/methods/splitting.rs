@@ -188,7 +188,6 @@ impl FreeFlow<RigidSystem<So3, Body>> for PrincipalRotor {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrate::FixedStep;
     use crate::integrate::rigid_test_support as ts;
 
     ts::order_two_tests!("splitting", Splitting::new);
@@ -198,37 +197,27 @@ mod tests {
     /// angular momentum is kept to round-off.
     #[test]
     fn bounded_energy_gni() {
-        let (sys, x0) = ts::gni();
-        let mut m = Splitting::new();
-        let (first, last) = ts::energy_error_tenths(&mut m, &sys, &x0, 1000.0, 100_000);
-        eprintln!("splitting gni 1e5 steps: max|dE| first 10% {first:.3e}, last 10% {last:.3e}");
-        assert!(last <= 2.0 * first, "{first} {last}");
+        let (first, _) =
+            ts::assert_bounded_energy("splitting gni", &mut Splitting::new(), ts::gni());
         assert!(first > 0.0 && first < 1e-3);
     }
 
     /// The same on a non-integrable body (three springs and gravity): last tenth <= 2 x first.
     #[test]
     fn bounded_energy_three_springs() {
-        let (sys, x0) = ts::three_springs();
-        let mut m = Splitting::new();
-        let (first, last) = ts::energy_error_tenths(&mut m, &sys, &x0, 1000.0, 100_000);
-        eprintln!(
-            "splitting three_springs 1e5 steps: max|dE| first 10% {first:.3e}, last 10% {last:.3e}"
+        ts::assert_bounded_energy(
+            "splitting three_springs",
+            &mut Splitting::new(),
+            ts::three_springs(),
         );
-        assert!(last <= 2.0 * first, "{first} {last}");
     }
 
     /// The free-rotor sub-flows conserve the world angular momentum (to round-off per step).
     #[test]
     fn world_momentum_free_rotor() {
         let (sys, x0) = ts::free_full();
-        let l0 = ts::momentum(&sys, &x0);
-        let mut m = Splitting::new();
-        let mut worst = 0.0_f64;
-        ts::run(&mut m, &sys, &x0, 10.0, 1000, |_, x| {
-            worst = worst.max((ts::momentum(&sys, x) - l0).norm() / l0.norm());
-        })
-        .unwrap();
+        let (_, dl, _, _) = ts::invariant_errors(&mut Splitting::new(), &sys, &x0, 10.0, 1000);
+        let worst = dl / ts::momentum(&sys, &x0).norm();
         eprintln!("splitting free_full: max relative |dL| {worst:.3e}");
         assert!(worst < 1e-13);
     }
@@ -236,37 +225,9 @@ mod tests {
     /// Time-reversible: a step of h followed by a step of -h returns to the start (round-off).
     #[test]
     fn time_reversible() {
-        let (sys, x0) = ts::three_springs();
-        let mut m = Splitting::new();
-        let mut x = x0;
-        let mut st = Stats::default();
-        m.step(&sys, 0.0, 0.05, &mut x, &mut st).unwrap();
-        m.step(&sys, 0.05, -0.05, &mut x, &mut st).unwrap();
-        assert!(ts::distance(&x, &x0) < 1e-14, "{}", ts::distance(&x, &x0));
+        let (d, st) = ts::reversal(&mut Splitting::new(), 0.05);
+        assert!(d < 1e-14, "{d}");
         // The second step reused the first step's end force: 3 evaluations, not 4.
         assert_eq!(st.rhs_evals, 3);
-    }
-
-    /// The heavy top runs 0.2 s at dt = 1e-3 with a small bounded energy error.
-    #[test]
-    fn heavy_top_runs() {
-        let (sys, x0) = ts::heavy_top();
-        let e0 = ts::energy(&sys, &x0);
-        let mut m = Splitting::new();
-        let mut worst = 0.0_f64;
-        ts::run(&mut m, &sys, &x0, 0.2, 200, |_, x| {
-            worst = worst.max(((ts::energy(&sys, x) - e0) / e0).abs());
-        })
-        .unwrap();
-        eprintln!("splitting heavy_top 0.2 s dt=1e-3: max relative |dE| {worst:.3e}");
-        // A second-order method's energy error at this step is of the size of its relative
-        // state error, 8e-4 here (|Omega| = 150 rad/s; see the heavy-top order test).
-        assert!(worst < 1e-3);
-    }
-
-    /// Bad numbers end a step with a typed failure, never a panic.
-    #[test]
-    fn typed_failures() {
-        ts::check_typed_failures(Splitting::new);
     }
 }
