@@ -103,18 +103,7 @@ pub trait Equilibrium<S: PathDependent + ?Sized> {
     /// `structural`, order 2 (the class of the step ladders: a static path has no
     /// time-discretisation order).
     fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: Self::NAME,
-            order: 2,
-            stages: 1,
-            implicit: true,
-            symplectic: false,
-            lie_group: false,
-            energy_conserving: false,
-            adaptive: false,
-            kind: MethodKind::Structural,
-            twin_of: None,
-        }
+        MethodInfo::new(Self::NAME, MethodKind::Structural, 2).with_implicit(true)
     }
 }
 
@@ -294,70 +283,36 @@ impl Workspace {
     }
 }
 
-/// Full Newton: the tangent of the current configuration every iteration.
+/// Full Newton: the tangent of the current configuration every iteration; with
+/// `LINE_SEARCH` ([`NewtonLineSearch`]) each correction `dx` of a static step without a
+/// prescribed increment, whose energy is above the tolerance, is scaled by `eta`, chosen by
+/// regula falsi on `s(eta) = dx . r(x + eta dx)` until `|s(eta)| <= 0.8 |s(0)|` (at most 10
+/// trials, `eta` kept in `[0.1, 1]`); the full step when it already satisfies that.
 ///
 /// # Example
 ///
 /// See [`PathDependent`]'s.
 #[derive(Debug, Clone)]
-pub struct Newton {
+pub struct NewtonIteration<const LINE_SEARCH: bool> {
     tol: f64,
     max_iter: usize,
     ws: Workspace,
-}
-
-impl Newton {
-    /// Newton with the energy tolerance `tol` (J) and at most `max_iter` iterations a step.
-    pub fn new(tol: f64, max_iter: usize) -> Result<Self, String> {
-        validate(tol, max_iter)?;
-        Ok(Newton {
-            tol,
-            max_iter,
-            ws: Workspace::new(),
-        })
-    }
-}
-
-impl<S: PathDependent + ?Sized> Equilibrium<S> for Newton {
-    const NAME: &'static str = "newton";
-
-    fn solve(
-        &mut self,
-        sys: &mut S,
-        f_ext: &DVector<f64>,
-        prescribed: Option<Prescribed>,
-        inertia: Option<Inertia<'_>>,
-    ) -> Result<usize, PathFailure> {
-        iterate(
-            &mut self.ws,
-            sys,
-            f_ext,
-            prescribed,
-            inertia,
-            (self.tol, self.max_iter),
-            None,
-        )
-    }
-}
-
-/// Newton with the energy line search: each correction `dx` (of a static step without a
-/// prescribed increment, whose energy is above the tolerance) is scaled by `eta`, chosen by
-/// regula falsi on `s(eta) = dx . r(x + eta dx)` until `|s(eta)| <= 0.8 |s(0)|` (at most 10
-/// trials, `eta` kept in `[0.1, 1]`); the full step when it already satisfies that.
-#[derive(Debug, Clone)]
-pub struct NewtonLineSearch {
-    tol: f64,
-    max_iter: usize,
-    ws: Workspace,
-    /// Trial evaluations of the line search so far.
+    /// Trial evaluations of the line search so far (0 without it).
     pub evaluations: u64,
 }
 
-impl NewtonLineSearch {
-    /// The search with the energy tolerance `tol` (J) and at most `max_iter` iterations.
+/// Full Newton.
+pub type Newton = NewtonIteration<false>;
+
+/// Newton with the energy line search.
+pub type NewtonLineSearch = NewtonIteration<true>;
+
+impl<const LINE_SEARCH: bool> NewtonIteration<LINE_SEARCH> {
+    /// The algorithm with the energy tolerance `tol` (J) and at most `max_iter` iterations a
+    /// step.
     pub fn new(tol: f64, max_iter: usize) -> Result<Self, String> {
         validate(tol, max_iter)?;
-        Ok(NewtonLineSearch {
+        Ok(NewtonIteration {
             tol,
             max_iter,
             ws: Workspace::new(),
@@ -366,8 +321,14 @@ impl NewtonLineSearch {
     }
 }
 
-impl<S: PathDependent + ?Sized> Equilibrium<S> for NewtonLineSearch {
-    const NAME: &'static str = "newton_line_search";
+impl<S: PathDependent + ?Sized, const LINE_SEARCH: bool> Equilibrium<S>
+    for NewtonIteration<LINE_SEARCH>
+{
+    const NAME: &'static str = if LINE_SEARCH {
+        "newton_line_search"
+    } else {
+        "newton"
+    };
 
     fn solve(
         &mut self,
@@ -377,7 +338,7 @@ impl<S: PathDependent + ?Sized> Equilibrium<S> for NewtonLineSearch {
         inertia: Option<Inertia<'_>>,
     ) -> Result<usize, PathFailure> {
         let limits = (self.tol, self.max_iter);
-        let search = Some(&mut self.evaluations);
+        let search = LINE_SEARCH.then_some(&mut self.evaluations);
         iterate(
             &mut self.ws,
             sys,

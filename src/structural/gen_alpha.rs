@@ -45,11 +45,9 @@
 //! `rho_inf` only like `(h omega)^(-2/3)` (`1.5e-3` above it at `h omega = 1e4`, measured); resolved modes are slightly damped; Newton failures and non-finite states are
 //! `newton_failure` and `non_finite`.
 use super::SecondOrder;
-use super::equilibrium::Equilibrium;
 use super::method::Method;
 use super::newton::{self, NewtonOptions, Point};
-use super::path::PathDependent;
-use super::path_step::{Path, Series};
+use super::path_step::AlphaFamily;
 use super::state::State;
 pub use crate::integrate::gen_alpha_coefficients::Coefficients;
 use crate::integrate::{Failure, Stats};
@@ -169,26 +167,12 @@ impl<S: SecondOrder + ?Sized> Method<S> for GenAlpha {
     }
 }
 
-/// On a path-dependent structure: its coefficients `(alpha_m, alpha_f, beta, gamma)` ([`Path::alpha_step`]).
-impl<S: PathDependent, E: Equilibrium<S>, G: Series> Method<Path<S, E, G>> for GenAlpha {
+/// On a path-dependent structure ([`AlphaFamily`]): its coefficients `(alpha_m, alpha_f, beta, gamma)`.
+impl AlphaFamily for GenAlpha {
     const NAME: &'static str = NAME;
 
-    fn step(
-        &mut self,
-        sys: &mut Path<S, E, G>,
-        t: f64,
-        h: f64,
-        state: &mut State,
-        stats: &mut Stats,
-    ) -> Result<(), Failure> {
-        sys.alpha_step(
-            t,
-            h,
-            state,
-            stats,
-            (self.c.alpha_m, self.c.alpha_f, self.c.beta, self.c.gamma),
-            NAME,
-        )
+    fn coefficients(&self) -> (f64, f64, f64, f64) {
+        (self.c.alpha_m, self.c.alpha_f, self.c.beta, self.c.gamma)
     }
 }
 

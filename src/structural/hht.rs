@@ -38,11 +38,9 @@
 //! coordinates' `q_{n+1}` satisfy it only to `O(h^2)`; Newton failures and non-finite
 //! states are `newton_failure` and `non_finite`.
 use super::SecondOrder;
-use super::equilibrium::Equilibrium;
 use super::method::Method;
 use super::newton::{self, NewtonOptions, Point};
-use super::path::PathDependent;
-use super::path_step::{Path, Series};
+use super::path_step::AlphaFamily;
 use super::state::State;
 use crate::integrate::{Failure, Stats};
 
@@ -175,26 +173,12 @@ impl<S: SecondOrder + ?Sized> Method<S> for Hht {
     }
 }
 
-/// On a path-dependent structure: `am = 0`, `af = -alpha`, its `beta`, `gamma` ([`Path::alpha_step`]).
-impl<S: PathDependent, E: Equilibrium<S>, G: Series> Method<Path<S, E, G>> for Hht {
+/// On a path-dependent structure ([`AlphaFamily`]): `am = 0`, `af = -alpha`, its `beta`, `gamma`.
+impl AlphaFamily for Hht {
     const NAME: &'static str = NAME;
 
-    fn step(
-        &mut self,
-        sys: &mut Path<S, E, G>,
-        t: f64,
-        h: f64,
-        state: &mut State,
-        stats: &mut Stats,
-    ) -> Result<(), Failure> {
-        sys.alpha_step(
-            t,
-            h,
-            state,
-            stats,
-            (0.0, -self.alpha, self.beta, self.gamma),
-            NAME,
-        )
+    fn coefficients(&self) -> (f64, f64, f64, f64) {
+        (0.0, -self.alpha, self.beta, self.gamma)
     }
 }
 

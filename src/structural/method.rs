@@ -145,18 +145,7 @@ pub trait Method<S: Structural + ?Sized> {
     /// implicit stage, neither symplectic nor energy-conserving in general (Newmark conserves
     /// a linear system's energy only), fixed step, of kind `structural`.
     fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: Self::NAME,
-            order: 2,
-            stages: 1,
-            implicit: true,
-            symplectic: false,
-            lie_group: false,
-            energy_conserving: false,
-            adaptive: false,
-            kind: MethodKind::Structural,
-            twin_of: None,
-        }
+        MethodInfo::new(Self::NAME, MethodKind::Structural, 2).with_implicit(true)
     }
 
     /// A state sized for `sys`. Provided: the system's ([`Structural::new_state`], without

@@ -59,17 +59,8 @@ impl<S: PathDependent, E: Equilibrium<S>, G: Series> Method<Path<S, E, G>> for M
 
     /// The structural methods' facts, energy-conserving.
     fn info(&self) -> MethodInfo {
-        MethodInfo {
-            name: NAME,
-            order: 2,
-            stages: 1,
-            implicit: true,
-            symplectic: false,
-            lie_group: false,
-            energy_conserving: true,
-            adaptive: false,
-            kind: MethodKind::Structural,
-            twin_of: None,
-        }
+        MethodInfo::new(NAME, MethodKind::Structural, 2)
+            .with_implicit(true)
+            .with_energy_conserving(true)
     }
 }

@@ -26,11 +26,9 @@
 //! stability (the reason for energy-momentum methods). A Newton that does not converge is a
 //! `newton_failure`, a non-finite state `non_finite`.
 use super::SecondOrder;
-use super::equilibrium::Equilibrium;
 use super::method::Method;
 use super::newton::{self, NewtonOptions, Point};
-use super::path::PathDependent;
-use super::path_step::{Path, Series};
+use super::path_step::AlphaFamily;
 use super::state::State;
 use crate::integrate::{Failure, Stats};
 
@@ -135,19 +133,12 @@ impl<S: SecondOrder + ?Sized> Method<S> for Newmark {
     }
 }
 
-/// On a path-dependent structure: `am = af = 0`, `beta = 1/4`, `gamma = 1/2` ([`Path::alpha_step`]).
-impl<S: PathDependent, E: Equilibrium<S>, G: Series> Method<Path<S, E, G>> for Newmark {
+/// On a path-dependent structure ([`AlphaFamily`]): `am = af = 0`, `beta = 1/4`, `gamma = 1/2`.
+impl AlphaFamily for Newmark {
     const NAME: &'static str = NAME;
 
-    fn step(
-        &mut self,
-        sys: &mut Path<S, E, G>,
-        t: f64,
-        h: f64,
-        state: &mut State,
-        stats: &mut Stats,
-    ) -> Result<(), Failure> {
-        sys.alpha_step(t, h, state, stats, (0.0, 0.0, BETA, GAMMA), NAME)
+    fn coefficients(&self) -> (f64, f64, f64, f64) {
+        (0.0, 0.0, BETA, GAMMA)
     }
 }
 

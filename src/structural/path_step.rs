@@ -52,6 +52,7 @@
 use nalgebra::DVector;
 
 use super::equilibrium::{Equilibrium, Inertia};
+use super::method::Method;
 use super::newton::check_step;
 use super::path::PathDependent;
 use super::state::State;
@@ -95,6 +96,33 @@ pub trait Series {
 impl<F: Fn(f64) -> f64> Series for F {
     fn at(&self, t: f64) -> f64 {
         self(t)
+    }
+}
+
+/// A member of the generalized-alpha family as it steps a path-dependent structure: its
+/// name and `(alpha_m, alpha_f, beta, gamma)` ([`Path::alpha_step`]). `Newmark`, `Hht` and
+/// `GenAlpha` are; every member is a [`Method`] on every [`Path`].
+pub trait AlphaFamily {
+    /// The method's name.
+    const NAME: &'static str;
+
+    /// `(alpha_m, alpha_f, beta, gamma)`.
+    fn coefficients(&self) -> (f64, f64, f64, f64);
+}
+
+impl<M: AlphaFamily, S: PathDependent, E: Equilibrium<S>, G: Series> Method<Path<S, E, G>> for M {
+    const NAME: &'static str = <M as AlphaFamily>::NAME;
+
+    fn step(
+        &mut self,
+        sys: &mut Path<S, E, G>,
+        t: f64,
+        h: f64,
+        state: &mut State,
+        stats: &mut Stats,
+    ) -> Result<(), Failure> {
+        let name = <M as AlphaFamily>::NAME;
+        sys.alpha_step(t, h, state, stats, self.coefficients(), name)
     }
 }
 
