@@ -294,6 +294,36 @@ impl Log {
 /// `max_iter` (`Newton::new` and its siblings).
 pub type Solver<E> = fn(f64, usize) -> Result<E, String>;
 
+/// What a static scene controls: the loaded unknown and the load's value per unit of `t`
+/// (a tip force or moment), or none for a cyclic scene, whose step `dt` must be a whole number
+/// of protocol increments landing on every reversal (an error says why not).
+fn control<C: RotationChart>(
+    s: &ColumnSetup,
+    col: &Column<C>,
+    dt: f64,
+) -> Result<(Option<usize>, f64), String> {
+    Ok(match s.scene.loading {
+        Loading::TipForce(v) => (Some(col.top_dof(0)), v),
+        Loading::TipMoment(v) => (Some(col.top_dof(4)), v),
+        Loading::Cyclic { ref protocol, .. } => {
+            let k = dt.round() as u64;
+            if (dt - dt.round()).abs() > 1e-9 || k == 0 {
+                return Err(format!(
+                    "the step {dt} is not a whole number of protocol increments"
+                ));
+            }
+            if let Some(i) = protocol.skipped_reversal(k) {
+                return Err(format!(
+                    "the step {dt} skips the protocol's reversal at t = {i}; a step must divide \
+                     every protocol segment"
+                ));
+            }
+            (None, 0.0)
+        }
+        Loading::Pulse { .. } => return Err("a dynamic scene needs a dynamic integrator".into()),
+    })
+}
+
 /// Runs a static or cyclic scene with the algorithm `solver` makes at step `dt` (the axial
 /// prelude with plain Newton).
 pub fn run_static<C: RotationChart, E: Equilibrium<Column<C>>>(
@@ -318,26 +348,7 @@ pub fn run_static<C: RotationChart, E: Equilibrium<Column<C>>>(
             return Ok(out);
         }
     };
-    let (load_dof, value) = match s.scene.loading {
-        Loading::TipForce(v) => (Some(col.top_dof(0)), v),
-        Loading::TipMoment(v) => (Some(col.top_dof(4)), v),
-        Loading::Cyclic { ref protocol, .. } => {
-            let k = dt.round() as u64;
-            if (dt - dt.round()).abs() > 1e-9 || k == 0 {
-                return Err(format!(
-                    "the step {dt} is not a whole number of protocol increments"
-                ));
-            }
-            if let Some(i) = protocol.skipped_reversal(k) {
-                return Err(format!(
-                    "the step {dt} skips the protocol's reversal at t = {i}; a step must divide \
-                     every protocol segment"
-                ));
-            }
-            (None, 0.0)
-        }
-        Loading::Pulse { .. } => return Err("a dynamic scene needs a dynamic integrator".into()),
-    };
+    let (load_dof, value) = control(s, &col, dt)?;
     log.peak_load = log.peak_load.max(value.abs());
     let mut base = nalgebra::Vector3::zeros();
     let first = log.observe(&col, 0.0, base);
