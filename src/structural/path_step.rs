@@ -63,8 +63,54 @@ use crate::integrate::{Failure, Stats};
 ///
 /// # Example
 ///
-/// See the fiber column's dynamic scene (`model/fiber_column/run_dynamic.rs`) and
-/// `path_step`'s tests.
+/// A unit mass on a spring of stiffness 4 (`omega = 2`) shaken by a ground pulse of one
+/// second, stepped by Newmark: afterwards it swings freely, its energy (kinetic plus the
+/// spring's) equal to the work the pulse did, to the Newton tolerance.
+///
+/// ```
+/// use mbdbench::integrate::Stats;
+/// use mbdbench::structural::equilibrium::Newton;
+/// use mbdbench::structural::method::Method;
+/// use mbdbench::structural::newmark::Newmark;
+/// use mbdbench::structural::newton::NewtonOptions;
+/// use mbdbench::structural::path_step::Path;
+/// # use mbdbench::structural::path::{PathDependent, PathFailure};
+/// # use nalgebra::{DMatrix, DVector};
+/// # /// A linear spring of stiffness 4 to the ground (the tests have yielding ones).
+/// # struct Spring { u: f64, u_c: f64, f: DVector<f64>, k: DMatrix<f64>, fresh: bool }
+/// # impl PathDependent for Spring {
+/// #     fn dim(&self) -> usize { 1 }
+/// #     fn assemble(&mut self) -> Result<(), PathFailure> {
+/// #         self.f[0] = 4.0 * self.u; self.k[(0, 0)] = 4.0; self.fresh = true; Ok(())
+/// #     }
+/// #     fn assembled(&self) -> bool { self.fresh }
+/// #     fn internal_force(&self) -> &DVector<f64> { &self.f }
+/// #     fn stiffness(&self) -> &DMatrix<f64> { &self.k }
+/// #     fn apply(&mut self, dx: &DVector<f64>, eta: f64) { self.u += eta * dx[0]; self.fresh = false; }
+/// #     fn mark(&mut self) {}
+/// #     fn return_to_mark(&mut self) {}
+/// #     fn commit(&mut self) { self.u_c = self.u; }
+/// #     fn revert(&mut self) { self.u = self.u_c; self.fresh = false; }
+/// #     fn additive(&self, _: usize) -> bool { true }
+/// #     fn displacement(&self, _: usize) -> f64 { self.u }
+/// #     fn committed_displacement(&self, _: usize) -> f64 { self.u_c }
+/// #     fn work(&self) -> f64 { 2.0 * self.u * self.u }
+/// # }
+/// # let spring = Spring { u: 0.0, u_c: 0.0, f: DVector::zeros(1), k: DMatrix::zeros(1, 1), fresh: false };
+/// let one = DVector::from_element(1, 1.0);
+/// let ground = |t: f64| if t < 1.0 { 1.0 } else { 0.0 };
+/// let newton = Newton::new(1e-20, 20).unwrap();
+/// let mut p = Path::new(spring, newton, one.clone(), 0.0, 0.0 * &one, -&one, ground).unwrap();
+/// let mut m = Newmark::new(NewtonOptions::default()).unwrap();
+/// let (mut st, mut stats) = (m.new_state(&p), Stats::default());
+/// m.init(&mut p, 0.0, &mut st, &mut stats).unwrap();
+/// for k in 0..400 {
+///     m.step(&mut p, k as f64 * 0.01, 0.01, &mut st, &mut stats).unwrap();
+/// }
+/// let energy = p.kinetic() + p.system.work();
+/// assert!(p.input().abs() > 0.1);
+/// assert!((energy - p.input()).abs() < 1e-9 * p.input().abs());
+/// ```
 pub struct Path<S, E, G> {
     /// The structure.
     pub system: S,
