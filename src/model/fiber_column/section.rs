@@ -229,6 +229,7 @@ impl FiberSection {
         std::mem::size_of::<Fiber>() + std::mem::size_of::<Place>() + std::mem::size_of::<Material>()
     }
 
+    #[inline]
     fn set_trial(&mut self, e: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
         let mut sums = Sums::default();
         each_group!(mut self, g => g.set_trial(e, &mut sums));
