@@ -128,18 +128,18 @@ impl Variant {
     }
 }
 
-/// The variant table of a family whose only parameterization is `none`: each row
-/// `(integrator, formulation, info, run)` becomes its `Variant`, numbered in row order
-/// (`index` is its place in the table), beside its run function.
-pub fn none_param_table<R>(
-    rows: impl IntoIterator<Item = (&'static str, &'static str, MethodInfo, R)>,
+/// A family's variant table: each row `(param, integrator, formulation, info, run)` becomes
+/// its `Variant`, numbered in row order (`index` is its place in the table), beside its run
+/// function.
+pub fn variant_table<R>(
+    rows: impl IntoIterator<Item = (&'static str, &'static str, &'static str, MethodInfo, R)>,
 ) -> Vec<(Variant, R)> {
     rows.into_iter()
         .enumerate()
-        .map(|(index, (integrator, formulation, info, run))| {
+        .map(|(index, (param, integrator, formulation, info, run))| {
             (
                 Variant {
-                    param: "none",
+                    param,
                     integrator,
                     formulation,
                     info,
@@ -149,6 +149,17 @@ pub fn none_param_table<R>(
             )
         })
         .collect()
+}
+
+/// [`variant_table`] of a family whose only parameterization is `none`: rows
+/// `(integrator, formulation, info, run)`.
+pub fn none_param_table<R>(
+    rows: impl IntoIterator<Item = (&'static str, &'static str, MethodInfo, R)>,
+) -> Vec<(Variant, R)> {
+    variant_table(
+        rows.into_iter()
+            .map(|(i, f, info, run)| ("none", i, f, info, run)),
+    )
 }
 
 /// Compiles one scene of a validated case into a runnable problem.

@@ -407,21 +407,7 @@ pub fn table() -> &'static [(Variant, RunFn)] {
         chart_rows!(rows, QuatProj);
         chart_rows!(rows, RotVec);
         chart_rows!(rows, MatrixProj);
-        rows.into_iter()
-            .enumerate()
-            .map(|(index, (param, integrator, formulation, info, run))| {
-                (
-                    Variant {
-                        param,
-                        integrator,
-                        formulation,
-                        info,
-                        index,
-                    },
-                    run,
-                )
-            })
-            .collect()
+        crate::problem::variant_table(rows)
     })
 }
 
