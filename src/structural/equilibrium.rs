@@ -130,10 +130,14 @@ pub(crate) struct Workspace {
 
 impl Workspace {
     pub fn new() -> Self {
+        Self::sized(0)
+    }
+
+    fn sized(n: usize) -> Self {
         Workspace {
-            lu: Lu::new(0),
-            dx: DVector::zeros(0),
-            r: DVector::zeros(0),
+            lu: Lu::new(n),
+            dx: DVector::zeros(n),
+            r: DVector::zeros(n),
             work_e: 0.0,
         }
     }
@@ -141,12 +145,7 @@ impl Workspace {
     /// Sizes the buffers for `n` unknowns (allocates only when `n` changes).
     pub fn size(&mut self, n: usize) {
         if self.r.len() != n {
-            *self = Workspace {
-                lu: Lu::new(n),
-                dx: DVector::zeros(n),
-                r: DVector::zeros(n),
-                work_e: 0.0,
-            };
+            *self = Self::sized(n);
         }
     }
 

@@ -219,12 +219,6 @@ pub(super) fn steps(s: &ColumnSetup, dt: f64) -> Result<(u64, u64, u64), String>
     Ok((n, per_sample, per_score))
 }
 
-/// The typed failure of a step: `work_limit` when the run's budget stopped it, else
-/// `newton_failure`.
-pub(super) fn failure(t: f64, e: PathFailure) -> Failure {
-    e.at(t)
-}
-
 /// The top's position at a step: displacement across and along the axis (m), turn (rad).
 #[derive(Default, Clone, Copy)]
 struct Top {
@@ -344,7 +338,7 @@ pub fn run_static<C: RotationChart, E: Equilibrium<Column<C>>>(
         Ok(f) => f,
         Err(e) => {
             out.stats = log.stats;
-            out.failure = Some(failure(0.0, e));
+            out.failure = Some(e.at(0.0));
             return Ok(out);
         }
     };
@@ -380,7 +374,7 @@ pub fn run_static<C: RotationChart, E: Equilibrium<Column<C>>>(
                 base = b;
             }
             Err(e) => {
-                out.failure = Some(failure(t, e));
+                out.failure = Some(e.at(t));
                 break;
             }
         }

@@ -17,7 +17,7 @@
 use super::case::Loading;
 use super::column::Column;
 use super::dynamic::{Ground, Shaken, energies, ground_motion};
-use super::run::{ColumnObs, ColumnSetup, Form, Keep, Log, RunOut, build, failure, prelude, steps};
+use super::run::{ColumnObs, ColumnSetup, Form, Keep, Log, RunOut, build, prelude, steps};
 use crate::rotation::RotationChart;
 use crate::structural::equilibrium::Newton;
 use crate::structural::method::Method;
@@ -46,7 +46,7 @@ pub fn run_dynamic<C: RotationChart, M: Method<Pulse<C>>>(
         Ok(f) => f,
         Err(e) => {
             out.stats = log.stats;
-            out.failure = Some(failure(0.0, e));
+            out.failure = Some(e.at(0.0));
             return Ok(out);
         }
     };
