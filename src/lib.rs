@@ -26,6 +26,8 @@ pub mod advise;
 pub mod case;
 pub mod catalogue;
 pub mod cli;
+pub mod cost;
+pub mod cpu_clock;
 pub mod digest;
 pub mod gate;
 pub mod integrate;

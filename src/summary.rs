@@ -190,6 +190,31 @@ pub struct Env {
     /// writing). Absent in files written before it.
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub elapsed_s: Option<f64>,
+    /// Where the run's time went, one entry per model family in the family table's order
+    /// (`FamilyTime`). Absent in files written before it and where nothing ran.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub families: Option<Vec<FamilyTime>>,
+}
+
+/// One family's share of a run (`env.families`): its runs, the ladder points it skipped
+/// (`n/a` records with the reason, `suite::skip`), and the CPU seconds its runs took on
+/// their worker threads (`cpu_clock`) in the results pass (observed and scored) and in the
+/// timing pass (the repeats without observation). The CPU seconds of the families add up to
+/// the runs' share of the command's `elapsed_s` times the workers that ran them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FamilyTime {
+    pub family: String,
+    pub runs: usize,
+    pub skipped: usize,
+    pub results_cpu_s: f64,
+    pub timing_cpu_s: f64,
+}
+
+impl FamilyTime {
+    /// The family's CPU seconds in both passes.
+    pub fn cpu_s(&self) -> f64 {
+        self.results_cpu_s + self.timing_cpu_s
+    }
 }
 
 /// The whole summary.
@@ -414,6 +439,7 @@ impl Env {
             threads,
             timing,
             elapsed_s: None,
+            families: None,
         }
     }
 }

@@ -26,6 +26,9 @@ fn real_quick_tier_passes_gates_and_baseline() {
         cases: vec![],
         scenes: vec![],
         base: None,
+        skip: true,
+        cap_s: mbdbench::suite::skip::DEFAULT_CAP_S,
+        cost: mbdbench::cost::CostTable::embedded(),
     };
     let problems = mbdbench::catalogue::problems(&cases, &[], &[]).unwrap();
     let summary = mbdbench::suite::run_catalogue(

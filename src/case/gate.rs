@@ -55,6 +55,38 @@ pub struct GateWhere {
     pub tol: Vec<f64>,
 }
 
+/// Relative slack when a `where` step or tolerance is matched with a ladder value or a record.
+pub const VALUE_REL_TOL: f64 = 1e-12;
+
+/// Whether two steps or tolerances are the same ladder value.
+pub fn same_value(a: f64, b: f64) -> bool {
+    (a - b).abs() <= VALUE_REL_TOL * a.abs().max(b.abs())
+}
+
+impl GateWhere {
+    /// Whether the filter names the ladder point `value` of a variant on `scene`, as the
+    /// gate expands it (`gate`): every given list holds the name, and the point's step (a
+    /// fixed-step method) or tolerance (an adaptive one) is one of those given, or none is
+    /// given; a filter with steps names no adaptive method's point, and one with tolerances
+    /// no fixed-step method's. The ladder's early stop (`suite::skip`) runs every point a
+    /// gate names.
+    pub fn names_point(&self, scene: &str, variant: [&str; 3], adaptive: bool, value: f64) -> bool {
+        let keep = |list: &[String], v: &str| list.is_empty() || list.iter().any(|x| x == v);
+        let [param, integrator, formulation] = variant;
+        let (wanted, other) = if adaptive {
+            (&self.tol, &self.dt)
+        } else {
+            (&self.dt, &self.tol)
+        };
+        keep(&self.scene, scene)
+            && keep(&self.param, param)
+            && keep(&self.integrator, integrator)
+            && keep(&self.formulation, formulation)
+            && other.is_empty()
+            && (wanted.is_empty() || wanted.iter().any(|w| same_value(*w, value)))
+    }
+}
+
 /// `[[gates]]` (shape-checked only: the gate command interprets them).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Gate {

@@ -59,7 +59,7 @@ pub use budget::{
 };
 pub use ctx::{Ctx, Res};
 pub use family::CaseFamily;
-pub use gate::{Bound, Gate, GateWhere, RawGate};
+pub use gate::{Bound, Gate, GateWhere, RawGate, VALUE_REL_TOL, same_value};
 pub use hash::{canonical_json, inputs_sha256, inputs_value};
 pub use ladder::{
     DIVIDES_REL_TOL, Ladder, LadderStep, Ladders, OrderClass, RawLadders, steps_dividing,

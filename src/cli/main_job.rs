@@ -19,6 +19,8 @@ pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> 
     if code != EXIT_OK {
         return Ok(code);
     }
+    let run_s = t0.elapsed().as_secs_f64();
+    let t1 = std::time::Instant::now();
     let code = cmd_stability(
         common,
         &StabilityArgs {
@@ -32,6 +34,7 @@ pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> 
     if code != EXIT_OK {
         return Ok(code);
     }
+    let stability_s = t1.elapsed().as_secs_f64();
     let summary = out.join("summary.json");
     let code = cmd_report(common, &summary, None, false, None)?;
     if code != EXIT_OK {
@@ -52,7 +55,7 @@ pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> 
     let code = cmd_gate(
         common,
         &GateArgs {
-            summary,
+            summary: summary.clone(),
             quick: false,
             baseline: None,
             factor: crate::gate::DEFAULT_FACTOR,
@@ -64,6 +67,23 @@ pub(super) fn run(common: &Common, full_stability: bool) -> Result<i32, String> 
             markdown: false,
         },
     )?;
+    crate::say!(
+        "\nTime: the run {run_s:.0} s, the stability study {stability_s:.0} s, the report, \
+         advice and gate {:.0} s. The run by family (CPU s on the worker threads; also in \
+         summary.md):",
+        t0.elapsed().as_secs_f64() - run_s - stability_s
+    );
+    match crate::gate::load_summary(&summary)
+        .ok()
+        .and_then(|s| s.env.families)
+    {
+        Some(f) => {
+            for line in crate::suite::account::lines(&f) {
+                crate::say!("{line}");
+            }
+        }
+        None => crate::say!("  (the summary has no account)"),
+    }
     crate::say!(
         "main job: {:.0} s; report {}",
         t0.elapsed().as_secs_f64(),

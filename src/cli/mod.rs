@@ -4,7 +4,7 @@
 //! job). Exit status: 0 success, 1 a run or check failed, 2 bad input or usage. Every command takes
 //! `--cases DIR` (default: the embedded copy of the source tree's `cases/`) and `--references DIR`.
 use clap::{Args, Parser, Subcommand};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 mod list;
 mod main_job;
@@ -113,6 +113,17 @@ pub enum Command {
         #[arg(long)]
         check: bool,
     },
+    /// Fit the cost table (a run's time in its work counters, per family and scene) to the
+    /// timing pass of a full run, and write it (regenerate it with the gate's baseline, on the
+    /// machine whose times it states).
+    Calibrate {
+        /// A full run's summary (its records' `wall_s`).
+        #[arg(long, default_value = "reports/latest/summary.json")]
+        summary: PathBuf,
+        /// Where to write the table.
+        #[arg(long, default_value = "reports/baseline/cost.json")]
+        out: PathBuf,
+    },
 }
 
 #[derive(Debug, Args, Clone)]
@@ -136,6 +147,15 @@ pub struct RunArgs {
     /// publication numbers); by default the timing pass runs one job per `--jobs` worker.
     #[arg(long = "serial-timing")]
     pub serial_timing: bool,
+    /// The cost cap of one run, in seconds: a ladder point whose time, predicted by the
+    /// committed cost table from the ladder's previous point, exceeds it is not run (an `n/a`
+    /// record with the reason). `inf` for none.
+    #[arg(long = "max-run-s", default_value_t = crate::suite::skip::DEFAULT_CAP_S)]
+    pub max_run_s: f64,
+    /// Run every point of every ladder: no ladder stops early (by the reference's floor, an
+    /// established first order or the cost cap; README, "Skipping what a scene doesn't need").
+    #[arg(long = "no-skip")]
+    pub no_skip: bool,
     /// Print the full table (one row per scene and variant); by default one line per case
     /// (the table is also in index.html).
     #[arg(long)]
@@ -152,6 +172,8 @@ impl Default for RunArgs {
             out: PathBuf::from("reports/latest"),
             t_end: None,
             serial_timing: false,
+            max_run_s: crate::suite::skip::DEFAULT_CAP_S,
+            no_skip: false,
             verbose: false,
         }
     }
@@ -348,6 +370,7 @@ pub fn execute(cli: Cli) -> i32 {
         Some(Command::Reference { case, scene, check }) => {
             cmd_reference(&common, &case, scene.as_deref(), check)
         }
+        Some(Command::Calibrate { summary, out }) => cmd_calibrate(&common, &summary, &out),
     };
     match result {
         Ok(code) => code,
@@ -356,6 +379,59 @@ pub fn execute(cli: Cli) -> i32 {
             EXIT_BAD_INPUT
         }
     }
+}
+
+/// `calibrate`: fits the cost table (`crate::cost`) to the timed records of `summary` and
+/// writes it to `out` in one step; prints each family's fit quality.
+fn cmd_calibrate(common: &Common, summary: &Path, out: &Path) -> Result<i32, String> {
+    let cases = load_cases(common)?;
+    let s = crate::gate::load_summary(summary).map_err(|e| e.to_string())?;
+    let timed = s.records.iter().filter(|r| r.wall_s.is_some()).count();
+    if timed == 0 {
+        return Err(format!(
+            "{}: no record has a wall time (a run with its timing pass is needed)",
+            summary.display()
+        ));
+    }
+    let models: Vec<&str> = crate::catalogue::FAMILIES.iter().map(|f| f.model).collect();
+    let family_of = |r: &crate::summary::Record| {
+        cases
+            .iter()
+            .find(|c| c.name == r.key.case)
+            .map(|c| crate::catalogue::family_of(c).model)
+    };
+    let table = crate::cost::calibrate(&s, &models, family_of);
+    let text = serde_json::to_string_pretty(&table).map_err(|e| e.to_string())? + "\n";
+    crate::reference::write_atomic(out, text.as_bytes())
+        .map_err(|e| format!("{}: {e}", out.display()))?;
+    let quality = crate::cost::quality(&table, &s, family_of);
+    for f in &table.families {
+        let (median, p90) = quality
+            .get(f.family.as_str())
+            .copied()
+            .unwrap_or((0.0, 0.0));
+        crate::say!(
+            "{}: {} timed runs, {} scenes; |ln(predicted / measured)| median {median:.2}, p90 \
+             {p90:.2} (the variants' ns per step); the counters' model alone (ns per step {:.1}, \
+             rhs {:.1}, Newton {:.1}, element {:.1}): median {:.2}, p90 {:.2}",
+            f.family,
+            f.pooled.runs,
+            f.scenes.len(),
+            f.pooled.ns_per_step,
+            f.pooled.ns_per_rhs,
+            f.pooled.ns_per_newton,
+            f.pooled.ns_per_element,
+            f.pooled.log_error_median,
+            f.pooled.log_error_p90,
+        );
+    }
+    crate::say!(
+        "cost table: {} ({} timed runs of {})",
+        out.display(),
+        timed,
+        summary.display()
+    );
+    Ok(EXIT_OK)
 }
 
 fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {

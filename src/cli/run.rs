@@ -100,12 +100,23 @@ pub(super) fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
 
 /// `cmd_run`, also returning the folder it wrote (`--out`, or the sibling of
 /// `where_to_write`), which the main job's later steps must read.
+/// The first 7 characters of a commit hash.
+fn short_commit(c: &str) -> &str {
+    c.get(..7).unwrap_or(c)
+}
+
 pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf), String> {
     let cases = load_cases(common)?;
     if let Some(t) = a.t_end
         && !(t.is_finite() && t > 0.0)
     {
         return Err(format!("--t-end {t}: must be a positive number"));
+    }
+    if a.max_run_s.is_nan() || a.max_run_s <= 0.0 {
+        return Err(format!(
+            "--max-run-s {}: must be a positive number of seconds (or inf)",
+            a.max_run_s
+        ));
     }
     let problems = crate::catalogue::problems(&cases, &a.filters.case, &a.filters.scene)?;
     let filter = VariantFilter {
@@ -131,6 +142,9 @@ pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf
         cases: a.filters.case.clone(),
         scenes: a.filters.scene.clone(),
         base: None,
+        skip: !a.no_skip,
+        cap_s: a.max_run_s,
+        cost: crate::cost::CostTable::embedded(),
     };
     let (out, how) = match where_to_write(&cases, &a.out, &opts.selection(&filter)) {
         Target::Replace(out) => (out, None),
@@ -161,6 +175,32 @@ pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf
         opts.jobs,
         if a.quick { ", quick tier" } else { "" }
     );
+    let predicted = suite::predict(&problems, &filter, &opts);
+    if predicted.cpu_s > 0.0 {
+        crate::tell!(
+            "  the cost table ({}) predicts at most {:.0} CPU s, about {:.0} s on {} workers, \
+             for {} of the {} ladder points{}",
+            if opts.cost.git_commit.is_empty() {
+                "uncalibrated".to_string()
+            } else {
+                format!(
+                    "commit {}, {}",
+                    short_commit(&opts.cost.git_commit),
+                    opts.cost.cpu
+                )
+            },
+            predicted.cpu_s,
+            predicted.cpu_s / opts.jobs.max(1) as f64,
+            opts.jobs,
+            predicted.points - predicted.unpredicted,
+            predicted.points,
+            if predicted.unpredicted > 0 {
+                " (the adaptive runs' steps are known only once they ran)"
+            } else {
+                ""
+            }
+        );
+    }
     let summary = suite::run_catalogue(problems, &filter, &opts)?;
     let mut stdout = crate::quiet::Stdout;
     if a.verbose {
@@ -178,8 +218,16 @@ pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf
         .iter()
         .filter(|r| r.status == crate::summary::Status::Failed)
         .count();
+    let skipped = summary
+        .records
+        .iter()
+        .filter(|r| {
+            r.status == crate::summary::Status::NotApplicable && (r.dt.is_some() || r.tol.is_some())
+        })
+        .count();
     crate::say!(
-        "{runs} runs ({failed} ended with a typed failure), {} n/a; {:.1} s; summary: {}{}",
+        "{runs} runs ({failed} ended with a typed failure), {} n/a ({skipped} of them ladder \
+         points not run: the ladder had told what it could); {:.1} s; summary: {}{}",
         summary.records.len() - runs,
         t0.elapsed().as_secs_f64(),
         out.join("summary.json").display(),

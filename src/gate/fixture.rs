@@ -124,6 +124,7 @@ pub fn summary(records: Vec<Record>) -> Summary {
             threads: 1,
             timing: None,
             elapsed_s: None,
+            families: None,
         },
         records,
         fits: vec![],

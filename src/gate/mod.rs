@@ -121,9 +121,6 @@ pub fn per_variant(metric: &str) -> bool {
 /// Relative slack between a gate's bound and its `baseline x margin`.
 pub const BOUND_REL_TOL: f64 = 1e-9;
 
-/// Relative slack when a `where` step or tolerance is matched with a ladder value or a record.
-const VALUE_REL_TOL: f64 = 1e-12;
-
 /// Options of `mbdbench gate`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GateOptions {
@@ -221,10 +218,7 @@ pub(super) fn all_records<'a>(
         .chain(stability.into_iter().flat_map(|s| s.records.iter()))
 }
 
-/// Whether two steps or tolerances are the same ladder value.
-pub(crate) fn same_value(a: f64, b: f64) -> bool {
-    (a - b).abs() <= VALUE_REL_TOL * a.abs().max(b.abs())
-}
+pub(crate) use crate::case::same_value;
 
 /// A record's value of `metric`: `None` absent, `Some(None)` null. Work counters come from
 /// `stats`.

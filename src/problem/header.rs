@@ -61,6 +61,9 @@ pub struct SceneHeader {
     pub settings_sha256: String,
     /// The case's primary error metric.
     pub primary_metric: String,
+    /// The `where` filters of the case's gates that can name this scene's points: a ladder
+    /// does not stop early at a point a gate names (`suite::skip`).
+    pub gated: Vec<crate::case::GateWhere>,
 }
 
 impl SceneHeader {
@@ -73,6 +76,12 @@ impl SceneHeader {
             inputs_sha256: crate::case::inputs_sha256(case, scene),
             settings_sha256: scene.settings_sha256.clone(),
             primary_metric: case.primary_metric.clone(),
+            gated: case
+                .gates
+                .iter()
+                .map(|g| g.filter.clone())
+                .filter(|f| f.scene.is_empty() || f.scene.contains(&scene.name))
+                .collect(),
         }
     }
 

@@ -414,6 +414,19 @@ pub trait Problem: Send + Sync {
     }
     /// The ladder (steps, or tolerances for an adaptive method) of a method in a tier.
     fn ladder(&self, quick: bool, info: &MethodInfo) -> &[f64];
+    /// Whether one of the case's gates names the ladder point `value` of `v` on this scene
+    /// (`case::GateWhere::names_point`): such a point always runs.
+    fn gated(&self, v: &Variant, value: f64) -> bool {
+        let h = self.header();
+        h.gated.iter().any(|f| {
+            f.names_point(
+                &h.scene,
+                [v.param, v.integrator, v.formulation],
+                v.info.adaptive,
+                value,
+            )
+        })
+    }
     /// Why a registered variant does not apply to this scene, if it does not.
     fn na_reason(&self, v: &Variant) -> Option<String>;
     /// Loads the stored reference of the scene from `root` and checks it (staleness, form).

@@ -233,6 +233,7 @@ pub fn summary_from(
             threads: 2,
             timing: None,
             elapsed_s: None,
+            families: None,
         },
         records,
         fits,

@@ -120,10 +120,43 @@ pub fn render(page: &Page) -> String {
             text(&super::advice::anchor(&c.name))
         ));
     }
+    if let Some((families, elapsed)) = &page.time {
+        s.push_str(&time_section(families, *elapsed));
+    }
     s.push_str(
         "\nThe plots, every table (the variants x metrics matrices, failures, largest steps, \
          n/a) and the stability study are in `index.html` beside this file.\n",
     );
+    s
+}
+
+/// The run's time per family (`env.families`): runs, skipped ladder points, CPU seconds in
+/// the results and timing passes, and each family's share.
+fn time_section(families: &[crate::summary::FamilyTime], elapsed: Option<f64>) -> String {
+    let total: f64 = families.iter().map(|f| f.cpu_s()).sum();
+    let mut s = format!(
+        "\n## Time per family\n\nThe run took {} on its workers: {total:.1} CPU s in all, \
+         by family (CPU seconds of the runs on their worker threads; skipped: ladder points \
+         not run, `n/a` with the reason).\n\n| family | runs | skipped | CPU s | results | \
+         timing | share |\n|---|---:|---:|---:|---:|---:|---:|\n",
+        elapsed.map_or("an unrecorded time".into(), |t| format!("{t:.0} s wall"))
+    );
+    for f in families {
+        s.push_str(&format!(
+            "| {} | {} | {} | {:.1} | {:.1} | {:.1} | {:.1} % |\n",
+            cell(&f.family),
+            f.runs,
+            f.skipped,
+            f.cpu_s(),
+            f.results_cpu_s,
+            f.timing_cpu_s,
+            if total > 0.0 {
+                100.0 * f.cpu_s() / total
+            } else {
+                0.0
+            }
+        ));
+    }
     s
 }
 
@@ -170,5 +203,37 @@ mod tests {
         assert!(s.contains("|---|---|"));
         assert!(!s.contains("<details>"));
         assert!(table(&t, 0).contains("<details><summary>1 rows</summary>"));
+    }
+
+    /// The time section lists every family of the account with its runs, skipped points and
+    /// CPU seconds, and shares that add up to 100 %.
+    #[test]
+    fn time_section_lists_every_family() {
+        let f = |family: &str, runs, skipped, r, t| crate::summary::FamilyTime {
+            family: family.into(),
+            runs,
+            skipped,
+            results_cpu_s: r,
+            timing_cpu_s: t,
+        };
+        let s = time_section(
+            &[
+                f("rigid_body", 10, 2, 30.0, 45.0),
+                f("fiber_column", 3, 0, 5.0, 20.0),
+            ],
+            Some(61.4),
+        );
+        assert!(
+            s.contains("61 s wall") && s.contains("100.0 CPU s in all"),
+            "{s}"
+        );
+        assert!(
+            s.contains("| rigid_body | 10 | 2 | 75.0 | 30.0 | 45.0 | 75.0 % |"),
+            "{s}"
+        );
+        assert!(
+            s.contains("| fiber_column | 3 | 0 | 25.0 | 5.0 | 20.0 | 25.0 % |"),
+            "{s}"
+        );
     }
 }

@@ -138,6 +138,9 @@ pub struct Page {
     pub advice: Option<crate::advise::Advice>,
     /// The recommendation on the physical metric of the families that declare one.
     pub physical: Option<crate::advise::Advice>,
+    /// Where the run's time went, per family (the summary's `env.families`), and the run's
+    /// wall time (`env.elapsed_s`).
+    pub time: Option<(Vec<crate::summary::FamilyTime>, Option<f64>)>,
 }
 
 /// The gate verdict of the page (the same rows and words as `mbdbench gate`).
@@ -392,6 +395,11 @@ fn build_page_with(
         gate_summary,
         advice: None,
         physical: None,
+        time: summary
+            .env
+            .families
+            .clone()
+            .map(|f| (f, summary.env.elapsed_s)),
     }
 }
 

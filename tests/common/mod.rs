@@ -111,6 +111,9 @@ pub fn run(
         cases: vec![],
         scenes: vec![],
         base: None,
+        skip: true,
+        cap_s: mbdbench::suite::skip::DEFAULT_CAP_S,
+        cost: mbdbench::cost::CostTable::embedded(),
     };
     let s = suite::run_catalogue(problems(case_name, scenes), &filter, &opts).unwrap();
     let _ = std::fs::remove_dir_all(&out);

@@ -587,6 +587,9 @@ proptest! {
             cases: vec![],
             scenes: vec![],
             base: None,
+            skip: true,
+            cap_s: mbdbench::suite::skip::DEFAULT_CAP_S,
+            cost: mbdbench::cost::CostTable::embedded(),
         };
         let filter = VariantFilter {
             param: vec![param.to_string()],

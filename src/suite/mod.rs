@@ -21,6 +21,9 @@ use crate::problem::{self, Entry, Problem, Variant, Want};
 use crate::selection::VariantFilter;
 use crate::summary::{self, Env, FitRecord, Record, RunKey, Status, Summary, Wall};
 
+pub mod account;
+pub mod skip;
+
 /// Options of a catalogue run.
 #[derive(Debug, Clone)]
 pub struct RunOptions {
@@ -45,6 +48,13 @@ pub struct RunOptions {
     /// run's) that this run merges into: its records outside this run's selection, their
     /// fits and series files are kept, the rest replaced (`mbdbench run` decides, `cli`).
     pub base: Option<Summary>,
+    /// Whether ladders stop early (`skip`; `--no-skip` runs every point).
+    pub skip: bool,
+    /// The cost cap of one run, s (`skip`, rule 3; `--max-run-s`; `f64::INFINITY`: none).
+    pub cap_s: f64,
+    /// The cost table that predicts a run's time (`crate::cost`; the committed one by
+    /// default, `CostTable::empty()` to predict nothing).
+    pub cost: crate::cost::CostTable,
 }
 
 impl RunOptions {
@@ -80,9 +90,30 @@ struct Job {
     value: f64,
 }
 
+/// One variant's ladder on one problem: its jobs, `jobs[range]`, coarse to fine.
+struct LadderJobs {
+    problem: usize,
+    variant: &'static Variant,
+    range: std::ops::Range<usize>,
+}
+
 struct Done {
     record: Record,
     series: Option<(String, summary::Series)>,
+    /// CPU seconds of the run in the results pass and in the timing pass (`cpu_clock`).
+    results_cpu_s: f64,
+    timing_cpu_s: f64,
+}
+
+impl Done {
+    fn of(record: Record) -> Done {
+        Done {
+            record,
+            series: None,
+            results_cpu_s: 0.0,
+            timing_cpu_s: 0.0,
+        }
+    }
 }
 
 /// Times one variant at one ladder value without observation (`Want::Timing`): `repeats`
@@ -136,17 +167,19 @@ pub fn run_catalogue(
 ) -> Result<Summary, String> {
     let started = std::time::Instant::now();
     prepare(&mut problems, opts)?;
-    let (mut jobs, mut records) = plan_jobs(&problems, filter, opts.quick);
-    sort_longest_first(&problems, &mut jobs);
+    let (jobs, ladders, mut records) = plan_jobs(&problems, filter, opts.quick);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.jobs.max(1))
         .build()
         .map_err(|e| e.to_string())?;
-    let mut done = results_pass(&pool, &problems, &jobs, opts);
+    let done = results_pass(&pool, &problems, &jobs, &ladders, opts);
+    // Longest first for the timing pass (the results pass orders whole ladders).
+    let (jobs, mut done) = longest_first(&problems, jobs, done);
     if opts.repeats > 0 {
         timing_pass(&pool, &problems, &jobs, &mut done, opts);
     }
     keep_drawn_series(&problems, &jobs, &mut done);
+    let families = account::by_family(&problems, &jobs, &done);
     // The new output is built beside the folder and swapped in whole (`output`): a reader
     // never sees this run's series beside another run's summary.
     let mut staging = output::Staging::begin(&opts.out, output::Writer::Run)?;
@@ -166,6 +199,7 @@ pub fn run_catalogue(
     records.sort_by_key(crate::catalogue::report_order);
     let mut env = Env::current(opts.jobs, Some(opts.timing_mode()));
     env.elapsed_s = Some(started.elapsed().as_secs_f64());
+    env.families = (!families.is_empty()).then_some(families);
     let summary = Summary {
         schema: 1,
         git_commit: summary::git_commit().into(),
@@ -179,14 +213,70 @@ pub fn run_catalogue(
     Ok(summary)
 }
 
-/// The runs of the selected variants over every problem's ladder (one job per ladder point),
-/// and the records of the combinations that do not apply (`n/a`, with the reason).
+/// What the cost table predicts for a run before it starts (`predict`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Prediction {
+    /// CPU seconds of the results and timing passes over every ladder point, none skipped
+    /// (an upper bound: the early stops are known only as the ladders run).
+    pub cpu_s: f64,
+    /// Ladder points the table cannot predict (adaptive methods' step counts are known only
+    /// once they ran, and a scene or family the table has no row for).
+    pub unpredicted: usize,
+    /// Ladder points in all.
+    pub points: usize,
+}
+
+/// The cost table's prediction of a run over `problems` with `filter` and `opts` (each
+/// fixed-step point's `T / dt` steps at its variant's cost per step, or the scene's model of
+/// its work, `skip::first_point_work`; the timing pass's repeats counted as `time_run` makes
+/// them).
+pub fn predict(
+    problems: &[Box<dyn Problem>],
+    filter: &VariantFilter,
+    opts: &RunOptions,
+) -> Prediction {
+    let (jobs, _, _) = plan_jobs(problems, filter, opts.quick);
+    let mut out = Prediction {
+        cpu_s: 0.0,
+        unpredicted: 0,
+        points: jobs.len(),
+    };
+    for j in &jobs {
+        let p = &*problems[j.problem];
+        let v = j.variant;
+        let seconds = opts
+            .cost
+            .for_scene(p.family().model, p.case(), p.scene())
+            .zip(skip::first_point_work(p, v, j.value))
+            .map(|(m, w)| {
+                m.seconds(
+                    &crate::cost::variant_key(v.param, v.integrator, v.formulation),
+                    &w,
+                )
+            });
+        match seconds {
+            Some(t) => {
+                let repeats = if t < 1.0 { opts.repeats.max(1) } else { 1 };
+                let timed = if opts.repeats == 0 { 0 } else { repeats };
+                out.cpu_s += t * (1 + timed) as f64;
+            }
+            None => out.unpredicted += 1,
+        }
+    }
+    out
+}
+
+/// The runs of the selected variants over every problem's ladder (one job per ladder point,
+/// each ladder's jobs together, coarse to fine: largest step or loosest tolerance first),
+/// the ladders, and the records of the combinations that do not apply (`n/a`, with the
+/// reason).
 fn plan_jobs(
     problems: &[Box<dyn Problem>],
     filter: &VariantFilter,
     quick: bool,
-) -> (Vec<Job>, Vec<Record>) {
+) -> (Vec<Job>, Vec<LadderJobs>, Vec<Record>) {
     let mut jobs: Vec<Job> = vec![];
+    let mut ladders: Vec<LadderJobs> = vec![];
     let mut records: Vec<Record> = vec![];
     for (pi, p) in problems.iter().enumerate() {
         for cell in problem::matrix(p.family()) {
@@ -206,54 +296,123 @@ fn plan_jobs(
                     continue;
                 }
             };
-            for &value in p.ladder(quick, &v.info) {
-                jobs.push(Job {
-                    problem: pi,
-                    variant: v,
-                    value,
-                });
-            }
+            let mut values = p.ladder(quick, &v.info).to_vec();
+            values.sort_by(|a, b| b.total_cmp(a));
+            let first = jobs.len();
+            jobs.extend(values.into_iter().map(|value| Job {
+                problem: pi,
+                variant: v,
+                value,
+            }));
+            ladders.push(LadderJobs {
+                problem: pi,
+                variant: v,
+                range: first..jobs.len(),
+            });
         }
     }
-    (jobs, records)
+    (jobs, ladders, records)
 }
 
-/// Longest first (by step count, `t_end / dt`; adaptive runs last), so that the parallel
-/// passes, one job per rayon task (`with_max_len(1)`), end on short runs. Without it rayon
-/// hands each thread a contiguous block it cannot split once started, and one core ground
-/// through the long Euler runs alone (full ladder: 60.6 s wall on 2 cores for 70.7 s of
-/// work). Records are sorted before they are written, so the order does not show in the
-/// summary.
-fn sort_longest_first(problems: &[Box<dyn Problem>], jobs: &mut [Job]) {
-    let steps = |j: &Job| {
-        if j.variant.info.adaptive {
-            0.0
-        } else {
-            problems[j.problem].t_end() / j.value
-        }
-    };
-    jobs.sort_by(|a, b| steps(b).total_cmp(&steps(a)));
+/// A job's length for ordering: its step count, `t_end / dt` (adaptive runs 0, last).
+fn steps(problems: &[Box<dyn Problem>], j: &Job) -> f64 {
+    if j.variant.info.adaptive {
+        0.0
+    } else {
+        problems[j.problem].t_end() / j.value
+    }
 }
 
-/// The results pass: every job scored, in parallel on the pool, one job per task.
+/// The jobs and their results reordered longest first (by step count; adaptive runs last),
+/// so that the timing pass, one job per rayon task (`with_max_len(1)`), ends on short runs.
+/// Without it rayon hands each thread a contiguous block it cannot split once started, and
+/// one core ground through the long Euler runs alone (full ladder: 60.6 s wall on 2 cores for
+/// 70.7 s of work). Records are sorted before they are written, so the order does not show
+/// in the summary.
+fn longest_first(
+    problems: &[Box<dyn Problem>],
+    jobs: Vec<Job>,
+    done: Vec<Done>,
+) -> (Vec<Job>, Vec<Done>) {
+    let mut pairs: Vec<(Job, Done)> = jobs.into_iter().zip(done).collect();
+    pairs.sort_by(|a, b| steps(problems, &b.0).total_cmp(&steps(problems, &a.0)));
+    pairs.into_iter().unzip()
+}
+
+/// The results pass: every ladder run in sequence (`skip` decides, before each point, from
+/// the ladder's earlier points), the ladders in parallel on the pool, one ladder per task,
+/// longest first (by their total step count). Returns one result per job, in `jobs`' order.
 fn results_pass(
     pool: &rayon::ThreadPool,
     problems: &[Box<dyn Problem>],
     jobs: &[Job],
+    ladders: &[LadderJobs],
     opts: &RunOptions,
 ) -> Vec<Done> {
     let progress = crate::progress::Progress::new(jobs.len(), "results", "runs", 20, opts.progress);
-    let done: Vec<Done> = pool.install(|| {
-        jobs.par_iter()
+    let mut order: Vec<&LadderJobs> = ladders.iter().collect();
+    let total = |l: &LadderJobs| -> f64 {
+        jobs[l.range.clone()]
+            .iter()
+            .map(|j| steps(problems, j))
+            .sum()
+    };
+    order.sort_by(|a, b| total(b).total_cmp(&total(a)));
+    let mut out: Vec<(usize, Done)> = pool.install(|| {
+        order
+            .par_iter()
             .with_max_len(1)
-            .map(|job| {
-                let d = run_job(&*problems[job.problem], job);
-                progress.tick();
-                d
+            .flat_map_iter(|l| {
+                let d = run_ladder(&*problems[l.problem], l, jobs, opts, &progress);
+                l.range.clone().zip(d)
             })
             .collect()
     });
     progress.finish();
+    out.sort_by_key(|(i, _)| *i);
+    out.into_iter().map(|(_, d)| d).collect()
+}
+
+/// One ladder, coarse to fine, each point run unless `skip` stops it (then it and every finer
+/// point are `n/a` records with the reason).
+fn run_ladder(
+    p: &dyn Problem,
+    l: &LadderJobs,
+    jobs: &[Job],
+    opts: &RunOptions,
+    progress: &crate::progress::Progress,
+) -> Vec<Done> {
+    let v = l.variant;
+    let rules = skip::Rules {
+        cap_s: opts.cap_s,
+        cost: opts.cost.for_scene(p.family().model, p.case(), p.scene()),
+    };
+    let mut done: Vec<Done> = Vec::with_capacity(l.range.len());
+    let mut stopped: Option<String> = None;
+    for job in &jobs[l.range.clone()] {
+        // A point a gate names always runs (the verdict must not depend on the stop).
+        let gated = p.gated(v, job.value);
+        if opts.skip && stopped.is_none() && !gated {
+            let earlier: Vec<&Record> = done.iter().map(|d| &d.record).collect();
+            stopped = skip::reason(p, v, job.value, &earlier, &rules);
+        }
+        let d = match &stopped {
+            Some(why) if !gated => {
+                let mut r = base_record(p, v.param, v.integrator, v.formulation);
+                r.set_stepping(v.stepping(job.value));
+                r.reference_sha256 = p.reference_sha256().map(str::to_string);
+                r.reason = Some(why.clone());
+                Done::of(r)
+            }
+            _ => {
+                let (mut d, cpu) = crate::cpu_clock::measure(|| run_job(p, job));
+                d.results_cpu_s = cpu;
+                d
+            }
+        };
+        progress.tick();
+        done.push(d);
+    }
     done
 }
 
@@ -273,7 +432,10 @@ fn timing_pass(
     let time_one = |job: &Job, d: &mut Done| {
         if d.record.status == Status::Ok {
             let p = &*problems[job.problem];
-            d.record.wall_s = time_run(p, job.variant, job.value, opts.repeats);
+            let (wall, cpu) =
+                crate::cpu_clock::measure(|| time_run(p, job.variant, job.value, opts.repeats));
+            d.record.wall_s = wall;
+            d.timing_cpu_s = cpu;
         }
         timing.tick();
     };
@@ -383,6 +545,10 @@ fn keep_drawn_series(problems: &[Box<dyn Problem>], jobs: &[Job], done: &mut [Do
         coarsest.entry(key).or_insert(failed);
     }
     for (k, (job, d)) in jobs.iter().zip(done.iter_mut()).enumerate() {
+        if d.record.status == Status::NotApplicable {
+            // A skipped ladder point (`skip`): its reason says it was not run.
+            continue;
+        }
         let v = job.variant;
         let p = &*problems[job.problem];
         let drawn = p
@@ -428,10 +594,7 @@ fn run_job(p: &dyn Problem, job: &Job) -> Done {
         Ok(o) => o,
         Err(msg) => {
             rec.refuse(msg);
-            return Done {
-                record: rec,
-                series: None,
-            };
+            return Done::of(rec);
         }
     };
     rec.take_run(out.stats, out.failure);
@@ -443,6 +606,8 @@ fn run_job(p: &dyn Problem, job: &Job) -> Done {
     Done {
         record: rec,
         series: out.series.map(|s| (rel, s)),
+        results_cpu_s: 0.0,
+        timing_cpu_s: 0.0,
     }
 }
 
