@@ -55,9 +55,11 @@ process is recorded alongside, a check that a ratio is not the machine's load
 ``testIter`` counts the corrector iterations after DisplacementControl's
 predictor solve, mbdbench's ``newton_iters`` counts every solve, the one that
 carries the prescribed increment included; ``opensees_solves`` puts OpenSees on
-mbdbench's count (iterations + steps).  The OpenSees version is that of the
-pinned wheel (generate.py's constants) and the installed openseespy's own
-package version.
+mbdbench's count (iterations + steps).  mbdbench's count includes the 10
+prelude steps' solves; ``opensees_solves_with_prelude`` adds OpenSees' (its
+LoadControl ``testIter``, which counts every solve of a load step).  The
+OpenSees version is that of the pinned wheel (generate.py's constants) and
+the installed openseespy's own package version.
 
 Usage (from the repository root, after ``cargo build --release``)::
 
@@ -218,6 +220,9 @@ def main():
         "opensees_iterations": o_doc["global_iterations"],
         "opensees_steps": o_doc["steps"],
         "opensees_solves": solves_o,
+        "opensees_prelude_iterations": o_doc["prelude_iterations"],
+        "opensees_prelude_steps": o_doc["prelude_steps"],
+        "opensees_solves_with_prelude": solves_o + o_doc["prelude_iterations"],
         "mbdbench_solves": it_m,
         "mbdbench_element_iterations": m_rec["stats"].get("element_iters"),
         "opensees": o_doc["opensees"],

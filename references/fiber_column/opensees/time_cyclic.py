@@ -17,7 +17,8 @@ Printed as one JSON object on stdout: every run's three times (``per_run``,
 in run order), the best (smallest) lateral time as ``seconds`` with its
 global Newton iteration count (``testIter`` summed over the lateral steps:
 the corrector iterations after DisplacementControl's predictor solve) and
-step count, and the OpenSees and openseespy versions.  Python's start-up and
+step count, the prelude's (LoadControl's: ``testIter`` counts every solve of
+its steps), and the OpenSees and openseespy versions.  Python's start-up and
 the import of openseespy are outside every time.
 
 Meant to run single-threaded and pinned, e.g.::
@@ -61,10 +62,12 @@ def one_run():
     ops.integrator("LoadControl", 1.0 / gen.AXIAL_STEPS)
     ops.analysis("Static")
     t_build = time.perf_counter() - t0
+    prelude_iters = 0
     t0 = time.perf_counter()
     for k in range(gen.AXIAL_STEPS):
         if ops.analyze(1) != 0:
             raise gen.NotConverged("axial step %d" % (k + 1))
+        prelude_iters += ops.testIter()
     t_prelude = time.perf_counter() - t0
     ops.loadConst("-time", 0.0)
     ops.timeSeries("Linear", 2)
@@ -84,7 +87,8 @@ def one_run():
             steps += 1
     t_lateral = time.perf_counter() - t0
     return {"build": t_build, "prelude": t_prelude, "lateral": t_lateral,
-            "iterations": iters, "steps": steps}
+            "iterations": iters, "steps": steps, "prelude_iterations": prelude_iters,
+            "prelude_steps": gen.AXIAL_STEPS}
 
 
 def main():
@@ -103,6 +107,8 @@ def main():
         "seconds": best["lateral"],
         "global_iterations": best["iterations"],
         "steps": best["steps"],
+        "prelude_iterations": best["prelude_iterations"],
+        "prelude_steps": best["prelude_steps"],
         "seconds_per_global_iteration": best["lateral"] / best["iterations"],
         "algorithm": gen.ALGORITHM[SCENE][0],
         "tol": gen.GLOBAL_TOL,
