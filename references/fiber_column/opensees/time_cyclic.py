@@ -42,6 +42,8 @@ import platform  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 
+# no __pycache__ in the references folder: mbdbench's tests copy the folder file by file
+sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import generate as gen  # noqa: E402
 import openseespy.opensees as ops  # noqa: E402
