@@ -1,18 +1,25 @@
 #!/usr/bin/env python3
 """Wall-clock timing of OpenSees on mbdbench's ``rc_cyclic_c01`` protocol.
 
-Builds the ``_c01`` fiber column exactly as generate.py does (same module,
-same constants), then times only the analysis calls:
+Each of ``--runs N`` runs (default 5) builds the ``_c01`` fiber column in a
+fresh OpenSees domain exactly as generate.py does (same module, same
+constants) and times, with ``time.perf_counter`` around the calls only:
 
-* ``prelude_seconds``: the 10 load-control steps of the axial load;
-* ``seconds``: the 5880 displacement-control steps of the lateral protocol
+* ``build``: ``generate.build_column`` (nodes, materials, the fiber section,
+  the transformation, the element) and the axial load pattern, analysis
+  objects and settings of the prelude;
+* ``prelude``: the 10 load-control steps of the axial load;
+* ``lateral``: the 5880 displacement-control steps of the lateral protocol
   (0.5 mm increments), including the per-leg ``integrator``/``analysis``
   re-issue that flips the increment sign, but no recording.
 
-Model building and the prelude are outside ``seconds``.  The whole is
-repeated ``RUNS`` times (``--runs N``) in fresh domains and the best (smallest) time is
-reported, together with the global Newton iteration count of that protocol
-and the seconds per global iteration, as one JSON object on stdout.
+Printed as one JSON object on stdout: every run's three times (``per_run``,
+in run order), the best (smallest) lateral time as ``seconds`` with its
+global Newton iteration count (``testIter`` summed over the lateral steps:
+the corrector iterations after DisplacementControl's predictor solve) and
+step count, the prelude's (LoadControl's: ``testIter`` counts every solve of
+its steps), and the OpenSees and openseespy versions.  Python's start-up and
+the import of openseespy are outside every time.
 
 Meant to run single-threaded and pinned, e.g.::
 
@@ -20,6 +27,7 @@ Meant to run single-threaded and pinned, e.g.::
         v/bin/python references/fiber_column/opensees/time_cyclic.py
 
 (the two thread variables are also forced below, before OpenSees loads).
+``speed_c01.py`` runs it against mbdbench.
 """
 
 import os
@@ -34,28 +42,34 @@ import platform  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 
+# no __pycache__ in the references folder: mbdbench's tests copy the folder file by file
+sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import generate as gen  # noqa: E402
 import openseespy.opensees as ops  # noqa: E402
 
-RUNS = 5                 # best of RUNS
+RUNS = 5                 # runs in fresh domains
 SCENE = "rc_cyclic_c01"  # timed scene
 MATS = "c01"             # its material set in generate.MATERIALS
 
 
 def one_run():
+    """One fresh-domain run: its build, prelude and lateral times, iterations, steps."""
+    t0 = time.perf_counter()
     gen.build_column(MATS)
-    # axial prelude (timed separately)
     ops.timeSeries("Linear", 1)
     ops.pattern("Plain", 1, 1)
     ops.load(2, 0.0, -gen.P_AXIAL, 0.0)
     gen.set_static_solver(algorithm=gen.ALGORITHM[SCENE])
     ops.integrator("LoadControl", 1.0 / gen.AXIAL_STEPS)
     ops.analysis("Static")
+    t_build = time.perf_counter() - t0
+    prelude_iters = 0
     t0 = time.perf_counter()
     for k in range(gen.AXIAL_STEPS):
         if ops.analyze(1) != 0:
             raise gen.NotConverged("axial step %d" % (k + 1))
+        prelude_iters += ops.testIter()
     t_prelude = time.perf_counter() - t0
     ops.loadConst("-time", 0.0)
     ops.timeSeries("Linear", 2)
@@ -74,25 +88,30 @@ def one_run():
             iters += ops.testIter()
             steps += 1
     t_lateral = time.perf_counter() - t0
-    return t_lateral, t_prelude, iters, steps
+    return {"build": t_build, "prelude": t_prelude, "lateral": t_lateral,
+            "iterations": iters, "steps": steps, "prelude_iterations": prelude_iters,
+            "prelude_steps": gen.AXIAL_STEPS}
 
 
 def main():
     ap = argparse.ArgumentParser(description="time OpenSees on rc_cyclic_c01")
     ap.add_argument("--runs", type=int, default=RUNS,
-                    help="fresh-domain runs, the best reported (default %d)" % RUNS)
+                    help="fresh-domain runs, each reported (default %d)" % RUNS)
     n = ap.parse_args().runs
+    if n < 1:
+        raise SystemExit("--runs must be at least 1")
     runs = [one_run() for _ in range(n)]
-    best = min(runs, key=lambda r: r[0])
+    best = min(runs, key=lambda r: r["lateral"])
     out = {
         "scene": SCENE,
         "runs": n,
-        "seconds": best[0],
-        "global_iterations": best[2],
-        "steps": best[3],
-        "seconds_per_global_iteration": best[0] / best[2],
-        "prelude_seconds_best": min(r[1] for r in runs),
-        "all_seconds": [r[0] for r in runs],
+        "per_run": runs,
+        "seconds": best["lateral"],
+        "global_iterations": best["iterations"],
+        "steps": best["steps"],
+        "prelude_iterations": best["prelude_iterations"],
+        "prelude_steps": best["prelude_steps"],
+        "seconds_per_global_iteration": best["lateral"] / best["iterations"],
         "algorithm": gen.ALGORITHM[SCENE][0],
         "tol": gen.GLOBAL_TOL,
         "element_tol": gen.ELEMENT_TOL,

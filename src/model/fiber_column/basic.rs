@@ -112,6 +112,9 @@ struct FbState {
     s: Vec<Vector3<f64>>,
     fs: Vec<Matrix3<f64>>,
     flex: M5,
+    /// `flex^-1` (None: singular), inverted once when `flex` is set: the element iterations
+    /// and the tangent of every state determination use it.
+    kel: Option<M5>,
 }
 
 /// A force-based element in its basic system.
@@ -187,6 +190,7 @@ impl ForceBased {
             s: vec![Vector3::zeros(); points],
             fs,
             flex,
+            kel: flex.try_inverse(),
         };
         Ok(Self {
             l,
@@ -256,10 +260,7 @@ impl ForceBased {
             }
         }
         let st = &self.trial;
-        let kel = st
-            .flex
-            .try_inverse()
-            .ok_or(ElementFailure::SingularFlexibility)?;
+        let kel = st.kel.ok_or(ElementFailure::SingularFlexibility)?;
         Ok(with_torsion(&st.q, &kel, self.gj / self.l, v[5]))
     }
 
@@ -280,10 +281,7 @@ impl ForceBased {
                 vq += self.b[i].transpose() * r * (self.w[i] * self.l);
             }
             let dv = v5 - vq;
-            let kel = st
-                .flex
-                .try_inverse()
-                .ok_or(ElementFailure::SingularFlexibility)?;
+            let kel = st.kel.ok_or(ElementFailure::SingularFlexibility)?;
             let dq = kel * dv;
             st.q += dq;
             let energy = dv.dot(&dq).abs();
@@ -302,6 +300,7 @@ impl ForceBased {
                 flex += self.b[i].transpose() * st.fs[i] * self.b[i] * (self.w[i] * self.l);
             }
             st.flex = flex;
+            st.kel = flex.try_inverse();
             if !st.q.iter().all(|x| x.is_finite()) {
                 return Err(ElementFailure::NotFinite);
             }

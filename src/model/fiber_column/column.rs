@@ -163,22 +163,25 @@ impl<C: RotationChart> Column<C> {
                     failure: failure.to_string(),
                 },
             })?;
-            let (f, k) = cr.global_at(&kin, &qb, &kb);
             if e == 0 {
-                base = f.fixed_rows::<3>(0).into_owned();
-            }
-            // Global unknowns of the element's 12: node e (absent for the base) then e + 1.
-            let map = |i: usize| -> Option<usize> {
-                let node = e + i / 6;
-                (node > 0).then(|| 6 * (node - 1) + i % 6)
-            };
-            for i in 0..12 {
-                let Some(gi) = map(i) else { continue };
-                self.f_int[gi] += f[i];
-                for j in 0..12 {
-                    if let Some(gj) = map(j) {
-                        self.k[(gi, gj)] += k[(i, j)];
+                // The clamped base node: only the free node's block is assembled.
+                let (reaction, f, k) = cr.global_free_end(&kin, &qb, &kb);
+                base = reaction;
+                for i in 0..6 {
+                    self.f_int[i] += f[i];
+                    for j in 0..6 {
+                        self.k[(i, j)] += k[(i, j)];
                     }
+                }
+                continue;
+            }
+            let (f, k) = cr.global_at(&kin, &qb, &kb);
+            // Global unknowns of the element's 12: node e, then e + 1 (e > 0: both free).
+            let map = |i: usize| 6 * (e + i / 6 - 1) + i % 6;
+            for i in 0..12 {
+                self.f_int[map(i)] += f[i];
+                for j in 0..12 {
+                    self.k[(map(i), map(j))] += k[(i, j)];
                 }
             }
         }
@@ -271,7 +274,7 @@ impl<C: RotationChart> Column<C> {
         for (e, (cr, b)) in self.elements.iter().enumerate() {
             let (r1, r2) = (C::matrix(&self.rot[e]), C::matrix(&self.rot[e + 1]));
             let (x1, x2) = (self.x0[e] + self.u[e], self.x0[e + 1] + self.u[e + 1]);
-            let (v, _) = cr.deformations(&x1, &x2, &r1, &r2);
+            let v = cr.basic_deformations(&x1, &x2, &r1, &r2);
             let (w, r) = b.energies(v[5]);
             out.0 += w;
             out.1 += r;
