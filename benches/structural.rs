@@ -28,6 +28,7 @@ use mbdbench::model::flexible_beam::fe::{Beam, Fe};
 use mbdbench::structural::SecondOrder;
 use nalgebra::{DMatrix, DVector};
 use std::hint::black_box;
+use std::path::Path;
 use std::time::SystemTime;
 use support::{Sizing, timed};
 
@@ -193,6 +194,33 @@ fn bench_lu(c: &mut Criterion) {
     g.finish();
 }
 
+/// Criterion's estimate (ns: the slope when sampled linearly, else the mean) of
+/// `newton_iteration/<name>/<n_el>` if this run wrote it (its folder:
+/// `<home>/structural/newton_iteration_<name>/<n_el>/new/`).
+fn estimate_ns(home: &Path, name: &str, n_el: usize, since: SystemTime) -> Result<f64, String> {
+    let path = home
+        .join(GROUP)
+        .join(format!("newton_iteration_{name}"))
+        .join(n_el.to_string())
+        .join("new")
+        .join("estimates.json");
+    let modified = std::fs::metadata(&path)
+        .and_then(|m| m.modified())
+        .map_err(|_| "not measured".to_string())?;
+    if modified < since {
+        return Err("not run by this process".into());
+    }
+    let text = std::fs::read_to_string(&path).map_err(|e| e.to_string())?;
+    let v: serde_json::Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
+    let e = match v.get("slope") {
+        Some(s) if !s.is_null() => s,
+        _ => &v["mean"],
+    };
+    e["point_estimate"]
+        .as_f64()
+        .ok_or_else(|| "no point estimate".into())
+}
+
 /// The closing table: us per iteration and the ratio of 80 to 10 elements, per base.
 fn table(since: SystemTime) {
     if !support::measuring() {
@@ -200,14 +228,13 @@ fn table(since: SystemTime) {
     }
     let home = support::criterion_home();
     for (name, _) in bases() {
-        let group = format!("{GROUP}/newton_iteration/{name}");
         let mut line = format!("{name}:");
         let mut us = Vec::new();
         for n_el in ELEMENTS {
-            match support::estimate(&home, &group, &n_el.to_string(), since) {
-                Ok(e) => {
-                    line += &format!(" {n_el}: {:.2} us", e.ns / 1e3);
-                    us.push((n_el, e.ns / 1e3));
+            match estimate_ns(&home, name, n_el, since) {
+                Ok(ns) => {
+                    line += &format!(" {n_el}: {:.2} us", ns / 1e3);
+                    us.push((n_el, ns / 1e3));
                 }
                 Err(why) => line += &format!(" {n_el}: ({why})"),
             }

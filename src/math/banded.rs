@@ -48,12 +48,9 @@
 //! step adds the growth of `W`, small when `B` is well conditioned (the beam's `B` is its
 //! prescribed-base iteration matrix, mass-dominated).
 //!
-//! Why hand-written (measured in a scratch crate outside this repository against
-//! `faer` 0.22's sparse LU, `sp_lu` with its symbolic analysis done once and only the
-//! numeric factorisation and one solve timed, on the beam's band `kl = ku = 5` with one
-//! border row and column, pinned to one core, median of 5 rounds): see
-//! [`BandedLu`]'s docs for the numbers. `nalgebra-sparse` has no LU (only a Cholesky, and
-//! the beam's tangent is not symmetric).
+//! Why hand-written: it is 2.2 to 2.6x faster than `faer`'s sparse LU on the beam's
+//! pattern (measured, [`BandedLu`]'s docs), and `nalgebra-sparse` has no LU (only a
+//! Cholesky; the beam's tangent is not symmetric).
 use super::lu::{DenseLu, LinearSolve, LuError};
 
 /// Where the border rows and columns sit in the matrix.
@@ -145,12 +142,15 @@ pub(crate) enum Slot {
 
 /// LU factorisation of a banded matrix with a border, in preallocated buffers.
 ///
-/// Measured against `faer` 0.22's sparse LU (scratch crate, `taskset -c 1`, 5 rounds,
-/// median; numeric factorisation plus one solve on the beam's pattern, `kl = ku = 5` and
-/// one border row and column, `n = 3 N + 1`): this type 0.93, 1.9, 3.8, 7.6 and 15 us at
-/// `N` = 10, 20, 40, 80, 160 elements, `faer` 7.4, 13, 25, 48 and 95 us (its supernodal
-/// numeric LU and its permutations cost more than the band's few flops at these sizes), so
-/// the hand-written one is kept and no dependency is added.
+/// Measured against `faer` 0.22's sparse LU (scratch crate outside the repository,
+/// `taskset -c 1`, 5 rounds, median, on a shared machine under load; faer's low-level
+/// `factorize_numeric_lu` into a preallocated numeric factor and scratch, its symbolic
+/// analysis done once, then one solve; this type's copy of the matrix, factor and solve) on
+/// the beam's pattern, `kl = ku = 5` and one border row and column, `n = 3 N + 1`: this type
+/// 4.3, 8.3, 17.3, 35.8 and 72 us at `N` = 10, 20, 40, 80, 160 elements, `faer` 10.2, 18.1,
+/// 44.2, 86.2 and 177 us (2.2 to 2.6x slower: its general sparse machinery costs more than
+/// the band's few flops), the dense LU 8.4, 40, 305 and 2146 us up to 80. So the
+/// hand-written one is kept and no dependency is added.
 ///
 /// # Example
 ///

@@ -7,10 +7,12 @@
 //! The choice ([`Tangent::new`]): a dense pattern, or a banded one below the measured
 //! crossover, is held and factored densely ([`DenseLu`], `2 n^3 / 3` flops); a larger banded
 //! pattern by [`BandedLu`] (`O(n kl (kl + ku))`). Crossover, measured with
-//! `benches/structural.rs`'s `structural/lu` group (factor plus one solve, `taskset -c 1`,
-//! criterion medians) on the beam's band `kl = ku = 5` with one border row and column:
-//! dense vs banded 0.26 vs 0.36 us at `n = 7`, 0.72 vs 0.66 us at 13, 1.6 vs 0.92 us at
-//! 19; so banded from `n >= 2 (kl + ku) + 2` (`n = 22` for the beam: 7 elements).
+//! `benches/structural.rs`'s `structural_lu` group (factor plus one solve, `taskset -c 1`,
+//! 5 rounds, criterion estimates, median; a shared, loaded machine) on the beam's band
+//! `kl = ku = 5` with one border row and column: dense vs banded 0.48 vs 0.93 us at `n = 7`,
+//! 1.48 vs 1.91 at 13, 2.32 vs 2.26 at 16, 3.37 vs 2.56 at 19, 4.51 vs 2.98 at 22 and 9.22
+//! vs 4.23 at 31; so banded from `n >= 3 (kl + ku) / 2 + 1` (16 for the beam: 5 elements
+//! with a free hub, 6 on a prescribed base). Measured for this band only.
 //! The beam's modal models and every small system keep the dense path.
 //!
 //! The pattern a system declares must hold every entry it writes: a write outside it is
@@ -37,7 +39,7 @@ pub enum Pattern {
 
 /// The smallest order at which a band of `kl`, `ku` is factored banded (module docs).
 pub fn crossover(kl: usize, ku: usize) -> usize {
-    2 * (kl + ku) + 2
+    3 * (kl + ku) / 2 + 1
 }
 
 /// A matrix written entry by entry: a tangent's writer is generic over it.
