@@ -182,6 +182,30 @@ impl DenseLu {
         &mut self.a
     }
 
+    /// The matrix buffer (the factors after a successful `factor`).
+    pub fn matrix(&self) -> &DMatrix<f64> {
+        &self.a
+    }
+
+    /// [`LinearSolve::factor`] with each column's singularity threshold raised to at least
+    /// `floor[j]` (a floor of the wrong length is a dimension error). The Schur complement
+    /// of a bordered banded matrix (`banded`) takes its border columns' thresholds from
+    /// the whole matrix: its own entries can be round-off of a cancellation.
+    pub fn factor_with_floor(&mut self, floor: &[f64]) -> Result<(), LuError> {
+        self.factored = false;
+        if floor.len() != self.dim() {
+            return Err(LuError::Dimension {
+                n: self.dim(),
+                len: floor.len(),
+            });
+        }
+        self.thresholds()?;
+        for (t, f) in self.threshold.iter_mut().zip(floor) {
+            *t = t.max(*f);
+        }
+        self.eliminate()
+    }
+
     /// Whether a valid factorisation is held.
     pub fn is_factored(&self) -> bool {
         self.factored
@@ -230,6 +254,17 @@ impl LinearSolve for DenseLu {
     fn factor(&mut self) -> Result<(), LuError> {
         self.factored = false;
         self.thresholds()?;
+        self.eliminate()
+    }
+
+    fn solve(&self, b: &mut [f64]) -> Result<(), LuError> {
+        self.substitute(b)
+    }
+}
+
+impl DenseLu {
+    /// The elimination of `factor` with the thresholds in place.
+    fn eliminate(&mut self) -> Result<(), LuError> {
         let n = self.dim();
         let a = self.a.as_mut_slice();
         for k in 0..n {
@@ -280,7 +315,8 @@ impl LinearSolve for DenseLu {
         Ok(())
     }
 
-    fn solve(&self, b: &mut [f64]) -> Result<(), LuError> {
+    /// The substitutions of `solve`.
+    fn substitute(&self, b: &mut [f64]) -> Result<(), LuError> {
         if !self.factored {
             return Err(LuError::NotFactored);
         }

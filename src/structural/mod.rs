@@ -49,10 +49,14 @@
 //! Their Newton iterations on the acceleration ask the system for `S` with `c_m = 1`,
 //! `c_c = gamma h`, `c_k = beta h^2` (Newmark's matrix above times `beta h^2`, bounded as
 //! `h -> 0`); the index-3 form uses `c_m = (1 - alpha_m)/(1 - alpha_f)` and the same
-//! `c_c`, `c_k`. They share [`crate::math::lu::DenseLu`] (dense LU with partial pivoting in place), [`newton`] (the
-//! Newton iteration on the acceleration and its options) and `init` (consistent initial
+//! `c_c`, `c_k`. They share [`crate::math::tangent::Tangent`] (the iteration matrix, sized once
+//! from the system's [`SecondOrder::pattern`]: a dense LU with partial pivoting, or a banded
+//! one with a border for a system that declares its band, such as the beam's `fe_exact`),
+//! [`newton`] (the Newton iteration on the acceleration and its options) and `init` (consistent initial
 //! accelerations, also for a singular mass matrix).
 use nalgebra::{DMatrix, DVector};
+
+use crate::math::tangent::{Pattern, Tangent};
 
 pub mod equilibrium;
 pub mod gen_alpha;
@@ -109,6 +113,35 @@ pub trait SecondOrder: Send + Sync {
         c_k: f64,
         s: &mut DMatrix<f64>,
     );
+
+    /// The nonzero pattern of the tangent, which sizes the Newton iterations' matrix once
+    /// ([`Tangent::new`]: dense, or banded with a border above the measured crossover).
+    /// Dense by default; a system that declares another writes [`SecondOrder::tangent_into`].
+    fn pattern(&self) -> Pattern {
+        Pattern::Dense
+    }
+
+    /// Overwrites `s` with the tangent of [`SecondOrder::tangent`], in the storage its
+    /// [`SecondOrder::pattern`] chose. By default through the dense buffer; on a banded
+    /// storage (a system that declared a band without writing this) it marks `s` so that its
+    /// factorisation fails.
+    #[allow(clippy::too_many_arguments)]
+    fn tangent_into(
+        &self,
+        t: f64,
+        q: &DVector<f64>,
+        v: &DVector<f64>,
+        a: &DVector<f64>,
+        c_m: f64,
+        c_c: f64,
+        c_k: f64,
+        s: &mut Tangent,
+    ) {
+        match s.dense_mut() {
+            Some(m) => self.tangent(t, q, v, a, c_m, c_c, c_k, m),
+            None => s.mark_stray(),
+        }
+    }
 }
 
 /// A shared reference to a second-order system is one (its methods read the system only),
@@ -146,6 +179,24 @@ impl<S: SecondOrder + ?Sized> SecondOrder for &S {
         s: &mut DMatrix<f64>,
     ) {
         (**self).tangent(t, q, v, a, c_m, c_c, c_k, s)
+    }
+
+    fn pattern(&self) -> Pattern {
+        (**self).pattern()
+    }
+
+    fn tangent_into(
+        &self,
+        t: f64,
+        q: &DVector<f64>,
+        v: &DVector<f64>,
+        a: &DVector<f64>,
+        c_m: f64,
+        c_c: f64,
+        c_k: f64,
+        s: &mut Tangent,
+    ) {
+        (**self).tangent_into(t, q, v, a, c_m, c_c, c_k, s)
     }
 }
 

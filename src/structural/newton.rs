@@ -197,7 +197,7 @@ pub(crate) fn solve_acceleration<S: SecondOrder + ?Sized>(
         qe,
         ve,
         r,
-        lu_n: lu,
+        iter: lu,
         ..
     } = w;
     for it in 1..=opts.max_iters {
@@ -208,7 +208,7 @@ pub(crate) fn solve_acceleration<S: SecondOrder + ?Sized>(
         sys.residual(p.t_e, q1, v1, x, r);
         stats.rhs_evals += 1;
         check_finite(r, p.t_n, method, "residual")?;
-        sys.tangent(p.t_e, q1, v1, x, 1.0, p.c_c, p.c_k, lu.matrix_mut());
+        sys.tangent_into(p.t_e, q1, v1, x, 1.0, p.c_c, p.c_k, lu);
         lu.factor().map_err(|e| lu_failure(e, p.t_n, method))?;
         r.neg_mut();
         lu.solve_in_place(r)

@@ -21,6 +21,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::{Constraints, SecondOrder};
 use crate::math::lu::DenseLu as Lu;
+use crate::math::tangent::{Pattern, Tangent};
 
 /// The state of a structural integrator and its workspace.
 ///
@@ -75,8 +76,11 @@ pub(crate) struct Work {
     pub jac: DMatrix<f64>,
     /// Right-hand side and increment of the constrained Newton system (length `n + m`).
     pub rhs: DVector<f64>,
-    /// LU of `n x n` matrices (mass matrix, unconstrained iteration matrix).
+    /// LU of `n x n` dense matrices (the mass matrix of the consistent start).
     pub lu_n: Lu,
+    /// The unconstrained Newton iteration matrix and its factorisation, in the storage of
+    /// the system's pattern.
+    pub iter: Tangent,
     /// LU of the `(n + m) x (n + m)` constrained systems.
     pub lu_c: Lu,
     /// The constrained start's finite differences: a displaced `q`, its Jacobian, and
@@ -89,7 +93,7 @@ pub(crate) struct Work {
 }
 
 impl Work {
-    fn new(n: usize, m: usize) -> Self {
+    fn new(n: usize, m: usize, pattern: Pattern) -> Self {
         Work {
             q1: DVector::zeros(n),
             v1: DVector::zeros(n),
@@ -104,6 +108,7 @@ impl Work {
             jac: DMatrix::zeros(m, n),
             rhs: DVector::zeros(n + m),
             lu_n: Lu::new(n),
+            iter: Tangent::new(n, pattern),
             lu_c: Lu::new(n + m),
             qt: DVector::zeros(n),
             jac_t: DMatrix::zeros(m, n),
@@ -118,19 +123,24 @@ impl State {
     /// A zero state for `n` coordinates and `m` constraints, with its workspace (the only
     /// allocation).
     pub fn new(n: usize, m: usize) -> Self {
+        Self::with_pattern(n, m, Pattern::Dense)
+    }
+
+    /// A zero state whose unconstrained iteration matrix has `pattern`.
+    pub fn with_pattern(n: usize, m: usize, pattern: Pattern) -> Self {
         State {
             q: DVector::zeros(n),
             v: DVector::zeros(n),
             a: DVector::zeros(n),
             aux: DVector::zeros(n),
             lambda: DVector::zeros(m),
-            work: Work::new(n, m),
+            work: Work::new(n, m, pattern),
         }
     }
 
     /// A zero state sized for an unconstrained system.
     pub fn for_system<S: SecondOrder + ?Sized>(sys: &S) -> Self {
-        State::new(sys.dim(), 0)
+        State::with_pattern(sys.dim(), 0, sys.pattern())
     }
 
     /// A zero state sized for a constrained system.
