@@ -54,26 +54,65 @@ pub fn exp(v: &Vector3<f64>) -> Matrix3<f64> {
     Matrix3::identity() + k * a + k * k * b
 }
 
-/// The unit quaternion of `exp([v]x)`: `(cos(t/2), sin(t/2) v/t)`.
+/// `(cos(t/2), sin(t/2)/t, (1 - (t/2) cot(t/2))/t^2)` as functions of `t2 = t^2`: the
+/// quaternion exponential's two coefficients and `dexp_inv`'s, from one `sin_cos` of `t/2`.
+/// Each number is the same expression in either use, so `exp_quat`, `dexp_inv_apply` and
+/// their fused form `exp_quat_dexp_inv` agree bit for bit (tested below).
 #[inline(always)]
-pub fn exp_quat(v: &Vector3<f64>) -> UnitQuaternion<f64> {
-    let t2 = v.norm_squared();
-    let (c, s_over_t) = if t2 < 1e-6 {
+fn half_angle_coeffs(t2: f64) -> (f64, f64, f64) {
+    if t2 < 1e-6 {
         (
             1.0 - t2 / 8.0 * (1.0 - t2 / 48.0),
             0.5 - t2 / 48.0 * (1.0 - t2 / 80.0),
+            1.0 / 12.0 + t2 / 720.0 + t2 * t2 / 30240.0,
         )
     } else {
         let t = t2.sqrt();
-        let (s, c) = (0.5 * t).sin_cos();
-        (c, s / t)
-    };
+        let h = 0.5 * t;
+        let (s, c) = h.sin_cos();
+        (c, s / t, (1.0 - h * c / s) / t2)
+    }
+}
+
+/// The unit quaternion `(c, s_over_t v)`.
+#[inline(always)]
+fn quat_of(v: &Vector3<f64>, c: f64, s_over_t: f64) -> UnitQuaternion<f64> {
     UnitQuaternion::new_unchecked(Quaternion::new(
         c,
         s_over_t * v.x,
         s_over_t * v.y,
         s_over_t * v.z,
     ))
+}
+
+/// The unit quaternion of `exp([v]x)`: `(cos(t/2), sin(t/2) v/t)`.
+#[inline(always)]
+pub fn exp_quat(v: &Vector3<f64>) -> UnitQuaternion<f64> {
+    let (c, s_over_t, _) = half_angle_coeffs(v.norm_squared());
+    quat_of(v, c, s_over_t)
+}
+
+/// `exp_quat(v)` and the coefficient `g` of `dexp_inv(+-v) a = a -+ (v x a)/2 + g v x (v x a)`
+/// (for [`dexp_inv_apply_coeff`]) from one `sin_cos`: an RKMK stage retracts by an increment
+/// and corrects by `dexp_inv` at the same increment, and the two `sin_cos` of `|v|/2` it
+/// otherwise computes were a fifth of an `so3` RK4 step. The same numbers as `exp_quat(v)`
+/// and `dexp_inv_apply(+-v, .)`, bit for bit.
+///
+/// # Example
+///
+/// ```
+/// use mbdbench::math::so3;
+/// use nalgebra::Vector3;
+///
+/// let (v, a) = (Vector3::new(0.3, -0.2, 0.9), Vector3::new(0.7, -0.4, 0.2));
+/// let (q, g) = so3::exp_quat_dexp_inv(&v);
+/// assert_eq!(q, so3::exp_quat(&v));
+/// assert_eq!(so3::dexp_inv_apply_coeff(&(-v), &a, g), so3::dexp_inv_apply(&(-v), &a));
+/// ```
+#[inline(always)]
+pub fn exp_quat_dexp_inv(v: &Vector3<f64>) -> (UnitQuaternion<f64>, f64) {
+    let (c, s_over_t, g) = half_angle_coeffs(v.norm_squared());
+    (quat_of(v, c, s_over_t), g)
 }
 
 /// The rotation vector of a unit quaternion, angle in `[0, pi]` (the sign of `q` is free).
@@ -187,13 +226,7 @@ pub fn dexp(v: &Vector3<f64>) -> Matrix3<f64> {
 /// `(1 - (t/2) cot(t/2)) / t^2` as a function of `t2 = t^2`.
 #[inline(always)]
 fn dexp_inv_coeff(t2: f64) -> f64 {
-    if t2 < 1e-6 {
-        1.0 / 12.0 + t2 / 720.0 + t2 * t2 / 30240.0
-    } else {
-        let t = t2.sqrt();
-        let h = 0.5 * t;
-        (1.0 - h * h.cos() / h.sin()) / t2
-    }
+    half_angle_coeffs(t2).2
 }
 
 /// Inverse of the left Jacobian, `dexp_inv(theta)` as a matrix.
@@ -206,8 +239,15 @@ pub fn dexp_inv(v: &Vector3<f64>) -> Matrix3<f64> {
 /// `dexp_inv(theta) a` without forming the matrix.
 #[inline(always)]
 pub fn dexp_inv_apply(v: &Vector3<f64>, a: &Vector3<f64>) -> Vector3<f64> {
+    dexp_inv_apply_coeff(v, a, dexp_inv_coeff(v.norm_squared()))
+}
+
+/// `dexp_inv(theta) a` given its coefficient `g = (1 - (t/2) cot(t/2))/t^2` of `|theta|`
+/// (from [`exp_quat_dexp_inv`]).
+#[inline(always)]
+pub fn dexp_inv_apply_coeff(v: &Vector3<f64>, a: &Vector3<f64>, g: f64) -> Vector3<f64> {
     let va = v.cross(a);
-    a - va * 0.5 + v.cross(&va) * dexp_inv_coeff(v.norm_squared())
+    a - va * 0.5 + v.cross(&va) * g
 }
 
 /// The Cayley map `cay(theta) = I + 4/(4 + |theta|^2) ([theta]x + [theta]x^2 / 2)`, a rational
@@ -304,6 +344,45 @@ mod tests {
             let d = (exp(&(v + a * h)) - exp(&(v - a * h))) / (2.0 * h);
             let expected = hat(&(dexp(&v) * a)) * exp(&v);
             assert!((d - expected).norm() < 1e-8, "{v}");
+        }
+    }
+
+    /// The fused exponential and `dexp_inv` coefficient equal `exp_quat` and `dexp_inv_apply`
+    /// bit for bit, on both sides of the Taylor switch and in both trivialisations.
+    #[test]
+    fn fused_exp_dexp_inv_is_bit_identical() {
+        let a = Vector3::new(0.7, -0.4, 0.2);
+        let more = (1..200).map(|i| {
+            let s = 1.07_f64.powi(i) * 1e-5;
+            Vector3::new(0.3 * s, -0.8 * s, 0.5 * s)
+        });
+        for v in vecs().into_iter().chain(more) {
+            let (q, g) = exp_quat_dexp_inv(&v);
+            assert_eq!(q, exp_quat(&v), "{v}");
+            for w in [v, -v] {
+                assert_eq!(
+                    dexp_inv_apply_coeff(&w, &a, g),
+                    dexp_inv_apply(&w, &a),
+                    "{v}"
+                );
+            }
+        }
+    }
+
+    /// This libm's `sin_cos` gives the bits of separate `sin` and `cos` calls (the exp map and
+    /// `dexp_inv` took them separately before they shared one `sin_cos`); `black_box` keeps
+    /// the compiler from fusing the separate calls into one.
+    #[test]
+    fn sin_cos_matches_sin_and_cos() {
+        for i in 0..20_000 {
+            let h = 1e-4 + i as f64 * 1.7e-4;
+            let (s, c) = h.sin_cos();
+            let (s1, c1) = (std::hint::black_box(h).sin(), std::hint::black_box(h).cos());
+            assert_eq!(
+                (s.to_bits(), c.to_bits()),
+                (s1.to_bits(), c1.to_bits()),
+                "{h}"
+            );
         }
     }
 

@@ -54,17 +54,12 @@ impl PoseChart for So3 {
     }
     #[inline(always)]
     fn retract(c: &Self::Coords, d: &Self::Tangent, spatial: bool) -> Self::Coords {
-        let e = so3::exp_quat(&d.fixed_rows::<3>(0).into_owned());
-        // Products of unit quaternions: keep the raw product (normalize() projects).
-        let rot = if spatial {
-            UnitQuaternion::new_unchecked(e.into_inner() * c.rot.into_inner())
-        } else {
-            UnitQuaternion::new_unchecked(c.rot.into_inner() * e.into_inner())
-        };
-        Pose {
-            rot,
-            x: c.x + d.fixed_rows::<3>(3),
-        }
+        act(
+            c,
+            d,
+            &so3::exp_quat(&d.fixed_rows::<3>(0).into_owned()),
+            spatial,
+        )
     }
     #[inline(always)]
     fn dexp_inv(theta: &Self::Tangent, v: &Self::Tangent, spatial: bool) -> Self::Tangent {
@@ -76,6 +71,22 @@ impl PoseChart for So3 {
             so3::dexp_inv_apply(&(-th), &a)
         };
         Vector6::new(r.x, r.y, r.z, v[3], v[4], v[5])
+    }
+    /// One `sin_cos` for both (`so3::exp_quat_dexp_inv`); the numbers of `retract` and
+    /// `dexp_inv`, bit for bit.
+    #[inline(always)]
+    fn retract_dexp_inv(
+        c: &Self::Coords,
+        d: &Self::Tangent,
+        spatial: bool,
+    ) -> (Self::Coords, impl Fn(&Self::Tangent) -> Self::Tangent) {
+        let th = d.fixed_rows::<3>(0).into_owned();
+        let (e, g) = so3::exp_quat_dexp_inv(&th);
+        let signed = if spatial { th } else { -th };
+        (act(c, d, &e, spatial), move |v: &Self::Tangent| {
+            let r = so3::dexp_inv_apply_coeff(&signed, &v.fixed_rows::<3>(0).into_owned(), g);
+            Vector6::new(r.x, r.y, r.z, v[3], v[4], v[5])
+        })
     }
     fn residual(c: &Self::Coords) -> Option<f64> {
         Some((c.rot.into_inner().norm_squared() - 1.0).abs())
@@ -91,5 +102,26 @@ impl PoseChart for So3 {
     #[inline]
     fn is_finite(c: &Self::Coords) -> bool {
         c.rot.coords.iter().all(|v| v.is_finite()) && c.x.iter().all(|v| v.is_finite())
+    }
+}
+
+/// The pose `c` moved by the rotation `e = exp(theta)` of the increment `d = (theta, dx)`:
+/// `q e` (body) or `e q` (spatial), and `x + dx`.
+#[inline(always)]
+fn act(
+    c: &Pose<UnitQuaternion<f64>>,
+    d: &Vector6<f64>,
+    e: &UnitQuaternion<f64>,
+    spatial: bool,
+) -> Pose<UnitQuaternion<f64>> {
+    // Products of unit quaternions: keep the raw product (normalize() projects).
+    let rot = if spatial {
+        UnitQuaternion::new_unchecked(e.into_inner() * c.rot.into_inner())
+    } else {
+        UnitQuaternion::new_unchecked(c.rot.into_inner() * e.into_inner())
+    };
+    Pose {
+        rot,
+        x: c.x + d.fixed_rows::<3>(3),
     }
 }
