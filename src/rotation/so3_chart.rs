@@ -26,6 +26,7 @@ impl PoseChart for So3 {
     const SE3: bool = false;
     const CONSTRAINED: bool = true;
     const NORMALIZES: bool = true;
+    const FUSED_RETRACT_DEXP_INV: bool = true;
 
     fn from_pose(r: &Matrix3<f64>, x: &Vector3<f64>) -> Self::Coords {
         Pose {

@@ -356,8 +356,8 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
         }
     }
 
-    /// The chart's fused retraction and correction (`PoseChart::retract_dexp_inv`): the
-    /// numbers of `retract`, `rhs` and `dexp_inv` apart.
+    /// The chart's fused retraction and correction (`PoseChart::retract_dexp_inv`) where it
+    /// has one: the numbers of `retract`, `rhs` and `dexp_inv` apart.
     #[inline(always)]
     fn rkmk_stage(
         &self,
@@ -365,6 +365,11 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
         s: &Self::State,
         theta: &Self::Tangent,
     ) -> (Self::State, Self::Tangent, Self::Tangent) {
+        if !C::FUSED_RETRACT_DEXP_INV {
+            let y = self.retract(s, theta);
+            let v = self.rhs(t, &y);
+            return (y, v, self.dexp_inv(theta, &v));
+        }
         let (pose, dexp_inv) = C::retract_dexp_inv(&s.pose, &theta.0, F::SPATIAL);
         let y = RigidState {
             pose,
