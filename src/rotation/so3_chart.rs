@@ -4,7 +4,8 @@
 //! Retract: `q exp(theta/2)` (body, right trivialisation) or `exp(theta/2) q` (spatial, left);
 //! the kinematic map is the trivialisation itself (`theta' = omega` body, `w` spatial) and the
 //! RKMK correction is `dexp_inv(-theta)` (body) or `dexp_inv(theta)` (spatial) of
-//! `math::so3`. The quaternion is renormalised after every step (`|q| = 1` to round-off;
+//! `math::so3`, both through `so3::exp_quat_dexp_inv` (Taylor polynomials below
+//! `|theta| = 0.5`, the closed forms to round-off; one `sin_cos` above). The quaternion is renormalised after every step (`|q| = 1` to round-off;
 //! the product of unit quaternions drifts by about 1 ulp per step otherwise). No singular
 //! set: conditioning is 1. Order of the integrators is unaffected by the renormalisation,
 //! which changes `q` only at round-off level.
@@ -55,26 +56,19 @@ impl PoseChart for So3 {
     }
     #[inline(always)]
     fn retract(c: &Self::Coords, d: &Self::Tangent, spatial: bool) -> Self::Coords {
-        act(
-            c,
-            d,
-            &so3::exp_quat(&d.fixed_rows::<3>(0).into_owned()),
-            spatial,
-        )
+        let e = so3::exp_quat_dexp_inv(&d.fixed_rows::<3>(0).into_owned()).0;
+        act(c, d, &e, spatial)
     }
     #[inline(always)]
     fn dexp_inv(theta: &Self::Tangent, v: &Self::Tangent, spatial: bool) -> Self::Tangent {
         let th = theta.fixed_rows::<3>(0).into_owned();
-        let a = v.fixed_rows::<3>(0).into_owned();
-        let r = if spatial {
-            so3::dexp_inv_apply(&th, &a)
-        } else {
-            so3::dexp_inv_apply(&(-th), &a)
-        };
+        let g = so3::exp_quat_dexp_inv(&th).1;
+        let signed = if spatial { th } else { -th };
+        let r = so3::dexp_inv_apply_coeff(&signed, &v.fixed_rows::<3>(0).into_owned(), g);
         Vector6::new(r.x, r.y, r.z, v[3], v[4], v[5])
     }
-    /// One `sin_cos` for both (`so3::exp_quat_dexp_inv`); the numbers of `retract` and
-    /// `dexp_inv`, bit for bit.
+    /// Both from one `so3::exp_quat_dexp_inv`; the numbers of `retract` and `dexp_inv`, bit
+    /// for bit.
     #[inline(always)]
     fn retract_dexp_inv(
         c: &Self::Coords,
