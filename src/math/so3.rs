@@ -451,8 +451,8 @@ mod tests {
 
     /// The Taylor polynomials of the half-angle coefficients agree with the closed forms
     /// (and, at the switch `t2 = SERIES_T2`, with each other across it) to round-off: `cos`
-    /// and `sin/t` to 2e-16 relative; `dexp_inv`'s coefficient to the closed form's own
-    /// cancellation error `eps 12/t2`.
+    /// and `sin/t` to 6e-16 relative (the closed form's own sqrt, sin and division round);
+    /// `dexp_inv`'s coefficient to the closed form's own cancellation error `eps 12/t2`.
     #[test]
     fn half_angle_series_matches_closed_form() {
         let closed = |t2: f64| {
@@ -466,7 +466,7 @@ mod tests {
         while t2 <= SERIES_T2 * (1.0 + 1e-12) {
             let t2s = t2.min(SERIES_T2 * (1.0 - 1e-16));
             let (a, b) = (half_angle_coeffs_series(t2s), closed(t2s));
-            assert!(rel(a.0, b.0) < 2e-16 && rel(a.1, b.1) < 2e-16, "{t2s}");
+            assert!(rel(a.0, b.0) < 6e-16 && rel(a.1, b.1) < 6e-16, "{t2s}");
             assert!(
                 rel(a.2, b.2) < 1e-16 + 4.0 * f64::EPSILON * 12.0 / t2s,
                 "{t2s}"
