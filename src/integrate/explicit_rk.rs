@@ -60,10 +60,9 @@ pub(crate) fn rkmk_stages<S: System>(
     let mut last_f = k[0];
     for i in 1..tab.stages() {
         let theta = combine(h, tab.a[i], &k[..i]);
-        let y = sys.retract(x, &theta);
-        let v = sys.rhs(t + tab.c[i] * h, &y);
+        let (y, v, ki) = sys.rkmk_stage(t + tab.c[i] * h, x, &theta);
         stats.rhs_evals += 1;
-        k[i] = if S::LIE { sys.dexp_inv(&theta, &v) } else { v };
+        k[i] = ki;
         last_y = y;
         last_f = v;
     }

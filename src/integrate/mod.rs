@@ -104,6 +104,27 @@ pub trait System: Send + Sync {
         let _ = theta;
         *v
     }
+    /// One Runge-Kutta-Munthe-Kaas stage at the increment `theta`: the point
+    /// `y = x (+) theta`, the vector field `v = f(t, y)` and its correction
+    /// `dexp_inv(theta, v)` (`v` itself on an additive system), as `(y, v, k)`. A system may
+    /// share work between the retraction and the correction, which see the same `theta`, but
+    /// must return the numbers of the default (the three calls apart).
+    #[inline(always)]
+    fn rkmk_stage(
+        &self,
+        t: f64,
+        x: &Self::State,
+        theta: &Self::Tangent,
+    ) -> (Self::State, Self::Tangent, Self::Tangent) {
+        let y = self.retract(x, theta);
+        let v = self.rhs(t, &y);
+        let k = if Self::LIE {
+            self.dexp_inv(theta, &v)
+        } else {
+            v
+        };
+        (y, v, k)
+    }
     /// Projection or re-charting after a step; returns whether it changed the state.
     fn normalize(&self, x: &mut Self::State) -> bool {
         let _ = x;

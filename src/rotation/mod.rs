@@ -86,6 +86,24 @@ pub trait PoseChart: Send + Sync + 'static {
     /// The RKMK correction: rate of the increment `theta` whose velocity is `v` (identity for
     /// additive charts).
     fn dexp_inv(theta: &Self::Tangent, v: &Self::Tangent, spatial: bool) -> Self::Tangent;
+    /// Whether `retract_dexp_inv` shares work (else a caller is better off calling `retract`
+    /// and `dexp_inv` apart: the default's closure is not always inlined, measured on
+    /// `se3_hq`).
+    const FUSED_RETRACT_DEXP_INV: bool = false;
+    /// `retract(c, d, spatial)` and the map `v -> dexp_inv(d, v, spatial)` together, for an
+    /// RKMK stage, which needs both at the same increment: a chart may share their work
+    /// (`so3`: one `sin_cos` of `|theta|/2`), and must return the same numbers as the two
+    /// apart. Default: the two apart.
+    #[inline(always)]
+    fn retract_dexp_inv(
+        c: &Self::Coords,
+        d: &Self::Tangent,
+        spatial: bool,
+    ) -> (Self::Coords, impl Fn(&Self::Tangent) -> Self::Tangent) {
+        (Self::retract(c, d, spatial), move |v: &Self::Tangent| {
+            Self::dexp_inv(d, v, spatial)
+        })
+    }
     /// The chart's own constraint residual (`||q|^2 - 1|`, `|R^T R - I|`, ...), `None` for
     /// minimal charts.
     fn residual(c: &Self::Coords) -> Option<f64>;

@@ -57,10 +57,9 @@ impl<S: ErrorScale> AdaptiveRk<S> {
                 continue;
             }
             let theta = combine(dh, row, &self.k[..i]);
-            let y = sys.retract(x_prev, &theta);
-            let v = sys.rhs(t + c * dh, &y);
+            let (_, _, ki) = sys.rkmk_stage(t + c * dh, x_prev, &theta);
             stats.rhs_evals += 1;
-            self.k[i] = if S::LIE { sys.dexp_inv(&theta, &v) } else { v };
+            self.k[i] = ki;
         }
     }
 

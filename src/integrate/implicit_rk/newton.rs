@@ -34,10 +34,8 @@ impl<S: System> ImplicitRk<S> {
     /// `F(v) = dexp_inv(v, f(t, retract(x, v)))`, one evaluation.
     #[inline(always)]
     fn stage_rate(sys: &S, t: f64, x: &S::State, v: &S::Tangent, stats: &mut Stats) -> S::Tangent {
-        let y = sys.retract(x, v);
-        let r = sys.rhs(t, &y);
         stats.rhs_evals += 1;
-        if S::LIE { sys.dexp_inv(v, &r) } else { r }
+        sys.rkmk_stage(t, x, v).2
     }
 
     /// `J = dF/dZ` at `Z = 0` by forward differences; returns `f(t, x)`.

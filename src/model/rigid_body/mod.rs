@@ -356,6 +356,30 @@ impl<C: PoseChart, F: Formulation> System for RigidSystem<C, F> {
         }
     }
 
+    /// The chart's fused retraction and correction (`PoseChart::retract_dexp_inv`) where it
+    /// has one: the numbers of `retract`, `rhs` and `dexp_inv` apart.
+    #[inline(always)]
+    fn rkmk_stage(
+        &self,
+        t: f64,
+        s: &Self::State,
+        theta: &Self::Tangent,
+    ) -> (Self::State, Self::Tangent, Self::Tangent) {
+        if !C::FUSED_RETRACT_DEXP_INV {
+            let y = self.retract(s, theta);
+            let v = self.rhs(t, &y);
+            return (y, v, self.dexp_inv(theta, &v));
+        }
+        let (pose, dexp_inv) = C::retract_dexp_inv(&s.pose, &theta.0, F::SPATIAL);
+        let y = RigidState {
+            pose,
+            vel: s.vel + theta.1,
+        };
+        let v = self.rhs(t, &y);
+        let k = if C::LIE { (dexp_inv(&v.0), v.1) } else { v };
+        (y, v, k)
+    }
+
     #[inline(always)]
     fn normalize(&self, s: &mut Self::State) -> bool {
         C::NORMALIZES && C::normalize(&mut s.pose)
