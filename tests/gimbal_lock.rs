@@ -107,11 +107,21 @@ fn adaptive_cost_conditioning_and_singular_starts() {
     // The chart is exact here (a = c = 0, b linear in t); what remains is the round-off of
     // summing the steps. rk4, gauss6 and dop853 stay within 1e-12; explicit euler's 3200 to
     // 25600 additions of a step that is not a binary fraction reach 1.0e-12 (bounded by N eps).
+    // A ladder whose coarser point already reached the reference's floor stops there (an
+    // `n/a` record saying so): the finer points would measure the reference.
     for r in s.records.iter().filter(|r| {
         r.key.scene == "spin_d0"
             && (r.key.param == "euler_xyz" || r.key.param == "euler_zyx")
             && r.key.integrator != "euler"
     }) {
+        if r.status == Status::NotApplicable {
+            let why = r.reason.as_deref().unwrap_or("");
+            assert!(
+                (r.dt.is_some() || r.tol.is_some()) && why.contains("accuracy claim"),
+                "{r:?}"
+            );
+            continue;
+        }
         assert_eq!(r.status, Status::Ok, "{r:?}");
         let e = common::metric(r, "rotation_error_max");
         assert!(

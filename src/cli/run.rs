@@ -225,9 +225,13 @@ pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf
             r.status == crate::summary::Status::NotApplicable && (r.dt.is_some() || r.tol.is_some())
         })
         .count();
+    let skipped = if skipped > 0 {
+        format!(" ({skipped} of them ladder points not run: their ladder had told what it could)")
+    } else {
+        String::new()
+    };
     crate::say!(
-        "{runs} runs ({failed} ended with a typed failure), {} n/a ({skipped} of them ladder \
-         points not run: the ladder had told what it could); {:.1} s; summary: {}{}",
+        "{runs} runs ({failed} ended with a typed failure), {} n/a{skipped}; {:.1} s; summary: {}{}",
         summary.records.len() - runs,
         t0.elapsed().as_secs_f64(),
         out.join("summary.json").display(),
