@@ -100,6 +100,36 @@ pub(super) fn cmd_run(common: &Common, a: &RunArgs) -> Result<i32, String> {
 
 /// `cmd_run`, also returning the folder it wrote (`--out`, or the sibling of
 /// `where_to_write`), which the main job's later steps must read.
+/// What the cost table predicts for the run, said before it starts (nothing when the table
+/// predicts none of its points).
+fn say_prediction(predicted: &suite::Prediction, opts: &RunOptions) {
+    if predicted.cpu_s > 0.0 {
+        crate::tell!(
+            "  the cost table ({}) predicts at most {:.0} CPU s, about {:.0} s on {} workers, \
+             for {} of the {} ladder points{}",
+            if opts.cost.git_commit.is_empty() {
+                "uncalibrated".to_string()
+            } else {
+                format!(
+                    "commit {}, {}",
+                    short_commit(&opts.cost.git_commit),
+                    opts.cost.cpu
+                )
+            },
+            predicted.cpu_s,
+            predicted.cpu_s / opts.jobs.max(1) as f64,
+            opts.jobs,
+            predicted.points - predicted.unpredicted,
+            predicted.points,
+            if predicted.unpredicted > 0 {
+                " (the adaptive runs' steps are known only once they ran)"
+            } else {
+                ""
+            }
+        );
+    }
+}
+
 /// The first 7 characters of a commit hash.
 fn short_commit(c: &str) -> &str {
     c.get(..7).unwrap_or(c)
@@ -175,32 +205,7 @@ pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf
         opts.jobs,
         if a.quick { ", quick tier" } else { "" }
     );
-    let predicted = suite::predict(&problems, &filter, &opts);
-    if predicted.cpu_s > 0.0 {
-        crate::tell!(
-            "  the cost table ({}) predicts at most {:.0} CPU s, about {:.0} s on {} workers, \
-             for {} of the {} ladder points{}",
-            if opts.cost.git_commit.is_empty() {
-                "uncalibrated".to_string()
-            } else {
-                format!(
-                    "commit {}, {}",
-                    short_commit(&opts.cost.git_commit),
-                    opts.cost.cpu
-                )
-            },
-            predicted.cpu_s,
-            predicted.cpu_s / opts.jobs.max(1) as f64,
-            opts.jobs,
-            predicted.points - predicted.unpredicted,
-            predicted.points,
-            if predicted.unpredicted > 0 {
-                " (the adaptive runs' steps are known only once they ran)"
-            } else {
-                ""
-            }
-        );
-    }
+    say_prediction(&suite::predict(&problems, &filter, &opts), &opts);
     let summary = suite::run_catalogue(problems, &filter, &opts)?;
     let mut stdout = crate::quiet::Stdout;
     if a.verbose {
