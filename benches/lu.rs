@@ -10,6 +10,8 @@
 //! `<impl>/<n>`: `cargo bench --bench lu` (about a minute). Where it fails: the timing is of
 //! one matrix per order; a matrix with another sparsity (the beam's is banded) factors at
 //! the same dense cost here.
+mod support;
+
 use criterion::{BenchmarkId, Criterion};
 use mbdbench::math::lu::{DenseLu, LinearSolve, Substitution};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
@@ -18,13 +20,7 @@ use std::time::Duration;
 
 /// A deterministic matrix with a dominant diagonal of alternating sign (64-bit LCG).
 fn matrix(n: usize) -> DMatrix<f64> {
-    let mut s = 0x2545_f491_4f6c_dd1d_u64;
-    let mut next = || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    };
+    let mut next = support::uniform();
     DMatrix::from_fn(n, n, |i, j| {
         next()
             + if i == j {

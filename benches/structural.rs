@@ -128,13 +128,7 @@ fn bench_newton(c: &mut Criterion) {
 
 /// The free hub's pattern at order `n` with random entries and a dominant diagonal.
 fn hub_matrix(n: usize) -> DMatrix<f64> {
-    let mut s = 0x2545_f491_4f6c_dd1d_u64;
-    let mut next = || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    };
+    let mut next = support::uniform();
     DMatrix::from_fn(n, n, |i, j| {
         let inside = i == 0 || j == 0 || i.abs_diff(j) <= 5;
         if inside {

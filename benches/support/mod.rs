@@ -1,4 +1,4 @@
-//! Shared by the `step` and `case` benches: sizing criterion's sampling for each benchmark
+//! Shared by the benches (`step`, `case`, `structural`, `lu`): sizing criterion's sampling for each benchmark
 //! from the measured cost of one of its iterations, so that every sample fits in the
 //! measurement time (criterion warns "Unable to complete N samples" when one does not), and
 //! reading criterion's own estimates back from its output folder for a closing table.
@@ -272,4 +272,17 @@ pub fn estimate(
         statistic,
         elements: benchmark["throughput"]["Elements"].as_u64(),
     })
+}
+
+/// Deterministic numbers uniform in `[-1, 1)` (a 64-bit linear congruential generator,
+/// Knuth's MMIX constants, the top 53 bits): the same sequence on every machine, for the
+/// benches' test matrices.
+pub fn uniform() -> impl FnMut() -> f64 {
+    let mut s = 0x2545_f491_4f6c_dd1d_u64;
+    move || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    }
 }

@@ -43,9 +43,10 @@ pub const FIT_POINTS: usize = 3;
 pub const ORDER1_SLACK: f64 = 0.02;
 
 /// The default cost cap of one run, s (rule 3; `mbdbench run --max-run-s`): above the
-/// dearest run of the catalogue on the machine of the cost table (explicit Euler at 6.25e-6 s
-/// over 100 s of `free_body/gni`, about 1.5 s), so that it guards against a ladder point that
-/// would hold a run for minutes rather than shortening the catalogue's ladders.
+/// dearest run of the catalogue on the machine of the cost table (the main job at 771e124,
+/// alone on 2 cores: `rc_cyclic_c02` `so3/newton_disp/disp_based_n8` 2.3 s, explicit Euler at
+/// 6.25e-6 s over 100 s of `free_body/gni` up to 1.4 s), so that it guards against a ladder
+/// point that would hold a run for minutes rather than shortening the catalogue's ladders.
 pub const DEFAULT_CAP_S: f64 = 60.0;
 
 /// What the rules need besides the ladder.
