@@ -251,9 +251,8 @@ impl BandedLu {
             Some(Slot::Right(bi, c)) => Ok(&mut self.right[c * n1 + bi]),
             Some(Slot::Below(r, bj)) => Ok(&mut self.below[bj * self.band.border.width() + r]),
             Some(Slot::Corner(r, c)) => Ok(&mut self.corner.matrix_mut()[(r, c)]),
-            None => Err(LuError::Dimension {
-                n: self.band.n,
-                len: i.max(j),
+            None => Err(LuError::OutsidePattern {
+                entry: Some((i, j)),
             }),
         }
     }

@@ -56,6 +56,10 @@ pub enum LuError {
     /// A solve without a valid factorisation (the last `factor` failed, or the matrix was
     /// changed since).
     NotFactored,
+    /// An entry written outside the pattern the matrix was sized for (a banded store): the
+    /// first stray entry `(row, column)`, or None when the system wrote its tangent densely
+    /// only (no banded writer) into a banded store. The system's declared pattern is wrong.
+    OutsidePattern { entry: Option<(usize, usize)> },
 }
 
 impl std::fmt::Display for LuError {
@@ -74,6 +78,16 @@ impl std::fmt::Display for LuError {
                 "numerically singular: pivot {pivot:.3e} of column {column} <= {threshold:.3e}"
             ),
             LuError::NotFactored => write!(f, "solve without a valid factorisation"),
+            LuError::OutsidePattern {
+                entry: Some((row, column)),
+            } => write!(
+                f,
+                "entry ({row}, {column}) written outside the declared pattern"
+            ),
+            LuError::OutsidePattern { entry: None } => write!(
+                f,
+                "a banded pattern declared, but the tangent written only densely"
+            ),
         }
     }
 }

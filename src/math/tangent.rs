@@ -16,7 +16,7 @@
 //! The beam's modal models and every small system keep the dense path.
 //!
 //! The pattern a system declares must hold every entry it writes: a write outside it is
-//! remembered and makes the next `factor` fail with [`LuError::Dimension`] (a `newton_failure`
+//! remembered and makes the next `factor` fail with [`LuError::OutsidePattern`] (a `newton_failure`
 //! of the step, not a panic), so a wrong declaration shows at once in any test that steps.
 //!
 //! Later users, by design (not wired yet): a constrained system's saddle-point matrix
@@ -103,13 +103,17 @@ enum Storage {
 /// assert!(b.iter().all(|x| (x - 1.0).abs() < 1e-12));
 ///
 /// s.add(0, 5, 1.0);
-/// assert!(matches!(s.factor(), Err(LuError::Dimension { .. })));
+/// s.add(0, 6, 1.0);
+/// // The first stray entry is named, and clearing forgets it.
+/// assert_eq!(s.factor(), Err(LuError::OutsidePattern { entry: Some((0, 5)) }));
+/// s.clear();
+/// assert!(s.factor().is_err_and(|e| matches!(e, LuError::Singular { .. })));
 /// ```
 #[derive(Debug, Clone)]
 pub struct Tangent {
     storage: Storage,
-    /// A write fell outside the pattern since the last `clear`.
-    stray: bool,
+    /// The first write outside the pattern since the last `clear`.
+    stray: Option<LuError>,
 }
 
 impl Tangent {
@@ -124,7 +128,7 @@ impl Tangent {
         };
         Tangent {
             storage,
-            stray: false,
+            stray: None,
         }
     }
 
@@ -143,7 +147,8 @@ impl Tangent {
 
     /// Marks the matrix as written outside its pattern (the next `factor` fails).
     pub fn mark_stray(&mut self) {
-        self.stray = true;
+        self.stray
+            .get_or_insert(LuError::OutsidePattern { entry: None });
     }
 
     /// `A_ij` before `factor` (0 outside a banded pattern).
@@ -162,7 +167,7 @@ impl Tangent {
 
 impl Entries for Tangent {
     fn clear(&mut self) {
-        self.stray = false;
+        self.stray = None;
         match &mut self.storage {
             Storage::Dense(lu) => lu.matrix_mut().fill(0.0),
             Storage::Banded(lu) => lu.clear(),
@@ -175,7 +180,9 @@ impl Entries for Tangent {
             Storage::Dense(lu) => lu.matrix_mut()[(i, j)] += v,
             Storage::Banded(lu) => match lu.entry_mut(i, j) {
                 Ok(x) => *x += v,
-                Err(_) => self.stray = true,
+                Err(e) => {
+                    self.stray.get_or_insert(e);
+                }
             },
         }
     }
@@ -186,7 +193,9 @@ impl Entries for Tangent {
             Storage::Dense(lu) => lu.matrix_mut()[(i, j)] = v,
             Storage::Banded(lu) => match lu.entry_mut(i, j) {
                 Ok(x) => *x = v,
-                Err(_) => self.stray = true,
+                Err(e) => {
+                    self.stray.get_or_insert(e);
+                }
             },
         }
     }
@@ -201,11 +210,8 @@ impl LinearSolve for Tangent {
     }
 
     fn factor(&mut self) -> Result<(), LuError> {
-        if self.stray {
-            return Err(LuError::Dimension {
-                n: self.dim(),
-                len: self.dim(),
-            });
+        if let Some(e) = self.stray {
+            return Err(e);
         }
         match &mut self.storage {
             Storage::Dense(lu) => lu.factor(),

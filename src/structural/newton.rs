@@ -100,9 +100,10 @@ pub(crate) fn check_step(t: f64, h: f64, method: &str) -> Result<(), Failure> {
 pub(crate) fn lu_failure(e: LuError, t: f64, method: &str) -> Failure {
     let kind = match e {
         LuError::NonFinite => FailureKind::NonFinite,
-        LuError::Singular { .. } | LuError::NotFactored | LuError::Dimension { .. } => {
-            FailureKind::NewtonFailure
-        }
+        LuError::Singular { .. }
+        | LuError::NotFactored
+        | LuError::Dimension { .. }
+        | LuError::OutsidePattern { .. } => FailureKind::NewtonFailure,
     };
     Failure::new(kind, t, format!("{method}: iteration matrix: {e}"))
 }
