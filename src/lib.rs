@@ -32,6 +32,7 @@ pub mod digest;
 pub mod gate;
 pub mod integrate;
 pub mod math;
+pub mod methods;
 pub mod metrics;
 pub mod model;
 pub mod output;

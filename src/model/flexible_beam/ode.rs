@@ -25,12 +25,10 @@ use std::sync::Mutex;
 use super::base::Base;
 use super::observe::{BeamObs, Beamlike, observe};
 use super::run::check_bound;
-use crate::integrate::adaptive_rk::AdaptiveRk;
-use crate::integrate::explicit_rk::ExplicitRk;
-use crate::integrate::implicit_rk::ImplicitRk;
 use crate::integrate::{Failure, FailureKind, Limits, Stats, System};
-use crate::run::{Grid, Observe, RunOutput, Sample, Stepping, run_adaptive, run_fixed};
 use crate::math::lu::{DenseLu as Lu, LinearSolve};
+use crate::methods::OdeMethod;
+use crate::run::{Grid, Observe, RunOutput, Sample, Stepping};
 
 struct Scratch {
     q: DVector<f64>,
@@ -154,7 +152,13 @@ impl<S: Beamlike, const D: usize> AsOde<S, D> {
             // The mass (and constraint) matrix is factored once, here.
             let mut s = ode.lock();
             let Scratch {
-                q, v, a, m, lu, aug, ..
+                q,
+                v,
+                a,
+                m,
+                lu,
+                aug,
+                ..
             } = &mut *s;
             ode.sys.tangent(0.0, q, v, a, 1.0, 0.0, 0.0, m);
             if !ode.factor(m, lu, aug) {
@@ -175,7 +179,9 @@ impl<S: Beamlike, const D: usize> AsOde<S, D> {
         if self.cyclic {
             let mut s = self.lock();
             s.a.fill(0.0);
-            let Scratch { q: sq, v: sv, a, m, .. } = &mut *s;
+            let Scratch {
+                q: sq, v: sv, a, m, ..
+            } = &mut *s;
             sq.copy_from(q);
             sv.copy_from(v);
             self.sys.tangent(0.0, sq, sv, a, 1.0, 0.0, 0.0, m);
@@ -198,7 +204,9 @@ impl<S: Beamlike, const D: usize> AsOde<S, D> {
             s.v[i] = x[n + i];
         }
         s.a.fill(0.0);
-        let Scratch { q, v, a, m, col, .. } = s;
+        let Scratch {
+            q, v, a, m, col, ..
+        } = s;
         if self.cyclic && self.sys.hub_column(q, col) {
             // Only the hub's row and column change (the rest was formed at construction).
             for j in 0..self.n {
@@ -418,7 +426,12 @@ impl<S: Beamlike, const D: usize> crate::run::Observable for AsOde<S, D> {
         let st = self.stab.as_ref()?;
         Some(
             (0..st.rows.nrows())
-                .map(|i| (0..self.n).map(|j| st.rows[(i, j)] * x[j]).sum::<f64>().abs())
+                .map(|i| {
+                    (0..self.n)
+                        .map(|j| st.rows[(i, j)] * x[j])
+                        .sum::<f64>()
+                        .abs()
+                })
                 .fold(0.0, f64::max),
         )
     }
@@ -434,26 +447,16 @@ impl<S: Beamlike + Clone, const D: usize> Clone for AsOde<S, D> {
     }
 }
 
-/// The generic integrators an ODE form runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum OdeMethod {
-    Rk4,
-    Dopri5,
-    Dop853,
-    ImplicitMidpoint,
-    Gauss6,
-}
-
-/// Runs `which` from rest at `t = 0` on the model `build` makes for each segment between
+/// Runs method `m` from rest at `t = 0` on the model `build` makes for each segment between
 /// breakpoints (`Base::on_segment`): each segment is its own run from the state reached (an
 /// adaptive method restarts exactly at the breakpoint, with a fresh initial step), and the
 /// outputs are joined (the time and the work integral run on in the state).
 #[allow(clippy::too_many_arguments)]
-pub fn run_ode<S: Beamlike + Clone, const D: usize>(
+pub fn run_ode<S: Beamlike + Clone, const D: usize, M: OdeMethod>(
     build: &dyn Fn(Base) -> Result<(S, Option<Stabilised>), String>,
     base: Base,
     breakpoints: &[f64],
-    which: OdeMethod,
+    m: &M,
     stepping: Stepping,
     grid: &Grid,
     limits: &Limits,
@@ -486,49 +489,17 @@ pub fn run_ode<S: Beamlike + Clone, const D: usize>(
             t_end: b - a,
             ..*grid
         };
-        let part = match (which, stepping) {
-            (OdeMethod::Rk4, Stepping::Dt(h)) => {
-                run_fixed(&sys, &mut ExplicitRk::rk4(), x0, h, &g, limits, observe_at)?
-            }
-            (OdeMethod::ImplicitMidpoint, Stepping::Dt(h)) => run_fixed(
-                &sys,
-                &mut ImplicitRk::implicit_midpoint(),
-                x0,
-                h,
-                &g,
-                limits,
-                observe_at,
-            )?,
-            (OdeMethod::Gauss6, Stepping::Dt(h)) => {
-                run_fixed(&sys, &mut ImplicitRk::gauss6(), x0, h, &g, limits, observe_at)?
-            }
-            (OdeMethod::Dopri5, Stepping::Tol(tol)) => run_adaptive(
-                &sys,
-                &mut AdaptiveRk::dopri5(tol),
-                x0,
-                &g,
-                limits,
-                observe_at,
-            )?,
-            (OdeMethod::Dop853, Stepping::Tol(tol)) => run_adaptive(
-                &sys,
-                &mut AdaptiveRk::dop853(tol),
-                x0,
-                &g,
-                limits,
-                observe_at,
-            )?,
-            _ => return Err(format!("{which:?} does not take {stepping:?}")),
-        };
+        let part = m.run(&sys, x0, stepping, &g, limits, observe_at)?;
         let last = part.samples.last().map(|s| s.obs.x);
         let skip = usize::from(!out.samples.is_empty());
         out.score_stride = part.score_stride;
-        out.samples.extend(part.samples.iter().skip(skip).map(|s| Sample {
-            t: s.t + a,
-            obs: s.obs.obs,
-            conditioning: s.conditioning,
-            residual: s.residual,
-        }));
+        out.samples
+            .extend(part.samples.iter().skip(skip).map(|s| Sample {
+                t: s.t + a,
+                obs: s.obs.obs,
+                conditioning: s.conditioning,
+                residual: s.residual,
+            }));
         out.stats += part.stats;
         if part.failure.is_some() {
             out.failure = part.failure.map(|mut f| {

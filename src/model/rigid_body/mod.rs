@@ -217,10 +217,20 @@ impl RigidBody {
 }
 
 /// The rigid body's equations in chart `C` and formulation `F`.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct RigidSystem<C: PoseChart, F: Formulation> {
     pub body: RigidBody,
     _m: PhantomData<(C, F)>,
+}
+
+// By hand: a derive would ask the chart and formulation markers to be `Clone` too.
+impl<C: PoseChart, F: Formulation> Clone for RigidSystem<C, F> {
+    fn clone(&self) -> Self {
+        RigidSystem {
+            body: self.body.clone(),
+            _m: PhantomData,
+        }
+    }
 }
 
 /// State: the chart's pose coordinates and the velocity 6-vector `(v, omega)` (body

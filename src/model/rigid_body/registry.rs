@@ -1,32 +1,34 @@
 //! The registry: the explicit table of valid (parameterization, integrator, formulation)
-//! variants of the rigid-body model, each pointing to a monomorphised run function, and the
-//! reasons every other combination is `n/a`. The table is the documentation of what is
-//! compared (`mbdbench list` prints it).
+//! variants of the rigid-body model, each pointing to a run monomorphised on its chart,
+//! formulation and method, and the reasons every other combination is `n/a`. The table is the
+//! documentation of what is compared (`mbdbench list` prints it).
 //!
-//! Rules: the generic integrators (`euler`, `rk4`, `dopri5`, `dop853`, `implicit_midpoint`,
-//! `gauss6`) run on every chart in both formulations (classical RK on additive charts, RKMK on
-//! Lie-group charts); the Crouch-Grossman methods (`lie_euler`, `cg3`) need a Lie-group chart;
-//! the geometric rigid-body methods (`splitting`, `lgvi`, `simo_wong`) are written on
-//! SO(3) x R^3 in the body formulation, and `lie_gen_alpha` (generic over
-//! `integrate::LieSecondOrder`) runs where the body implements that trait: `so3`, body. Per scene, the SE(3) charts (`se3_hq`,
-//! `dual_quat`) are `n/a` when the body does not translate (a pivot, or no mass).
-use crate::integrate::adaptive_rk::AdaptiveRk;
+//! How it is built: the generic methods reach it through the method face (`crate::methods`),
+//! the path a method written outside the crate takes as well: `methods::builtin::each` hands
+//! each method to [`EveryChart`], which instantiates it on every chart in both formulations
+//! where it applies (`Where`: RK, Gauss and Dormand-Prince everywhere, classical on additive
+//! charts and RKMK on Lie-group charts; the Crouch-Grossman methods `lie_euler`, `cg3` on the
+//! Lie-group charts). The body's own methods, written for one system only, are added by
+//! [`on_system`]: the geometric methods (`splitting`, `lgvi`, `simo_wong`) on SO(3) x R^3 in
+//! the body formulation, `lie_gen_alpha` (generic over `integrate::LieSecondOrder`) where the
+//! body implements that trait (`so3`, body), and the compensated-summation variants on the
+//! long-horizon study's charts. Per scene, the SE(3) charts (`se3_hq`, `dual_quat`) are `n/a`
+//! when the body does not translate (a pivot, or no mass).
 use super::methods::compensated::GaussKahan;
-use crate::integrate::crouch_grossman::CrouchGrossman;
-use crate::integrate::explicit_rk::ExplicitRk;
-use crate::integrate::implicit_rk::ImplicitRk;
-use crate::integrate::lie_gen_alpha::LieGenAlpha;
 use super::methods::lgvi::Lgvi;
 use super::methods::simo_wong::SimoWong;
 use super::methods::simo_wong_kahan::SimoWongKahan;
 use super::methods::splitting::Splitting;
-use crate::integrate::{Adaptive, FixedStep, Limits, MethodInfo};
+use crate::integrate::lie_gen_alpha::LieGenAlpha;
+use crate::integrate::{FixedStep, Limits, MethodInfo, System};
+use crate::methods::{OdeMethod, Visit, Where};
 use crate::model::rigid_body::{Observation, RigidBody, RigidSystem};
 use crate::rotation::{
     Body, DualQuat, EulerXyz, EulerZxz, EulerZyx, Formulation, Matrix, MatrixProj, PoseChart, Quat,
     QuatProj, RotVec, Se3Hq, So3, Spatial,
 };
-use crate::run::{Grid, Observe, RunOutput, Watched, run_adaptive, run_fixed};
+use crate::run::{Grid, Observe, RunOutput, run_fixed};
+use std::sync::Arc;
 
 /// What a run function needs of a scene.
 #[derive(Debug, Clone)]
@@ -41,10 +43,11 @@ pub struct RigidSetup {
 }
 
 /// A monomorphised run: fixed step (`dt`) or tolerance (`tol`).
-pub type RunFn = fn(&RigidSetup, f64) -> Result<RunOutput<Observation>, String>;
+pub type RunFn =
+    Arc<dyn Fn(&RigidSetup, f64) -> Result<RunOutput<Observation>, String> + Send + Sync>;
 
 /// One valid combination.
-#[derive(Clone, Copy)]
+#[derive(Clone)]
 pub struct Variant {
     pub param: &'static str,
     pub integrator: &'static str,
@@ -147,132 +150,144 @@ pub fn find(param: &str, integrator: &str, formulation: &str) -> Option<&'static
         .find(|v| v.param == param && v.integrator == integrator && v.formulation == formulation)
 }
 
-/// A fixed-step variant of chart `$chart` and formulation `$form` built by `$ctor`.
-macro_rules! fixed {
-    ($chart:ty, $form:ty, $name:literal, $ctor:expr) => {
-        Variant {
-            param: <$chart as PoseChart>::NAME,
-            integrator: $name,
-            formulation: <$form as Formulation>::NAME,
-            info: FixedStep::<RigidSystem<$chart, $form>>::info(&$ctor),
-            se3: <$chart as PoseChart>::SE3,
-            run: |setup: &RigidSetup, dt: f64| {
-                let sys = RigidSystem::<$chart, $form>::new(setup.body.clone());
-                let x0 = sys.state_from(&setup.initial);
-                let mut m = $ctor;
-                run_fixed(
-                    &sys,
-                    &mut m,
-                    x0,
-                    dt,
-                    &setup.grid,
-                    &setup.limits,
-                    &setup.observe,
-                )
-            },
-        }
-    };
-}
-
-/// An adaptive variant.
-macro_rules! adaptive {
-    ($chart:ty, $form:ty, $name:literal, $ctor:ident) => {
-        Variant {
-            param: <$chart as PoseChart>::NAME,
-            integrator: $name,
-            formulation: <$form as Formulation>::NAME,
-            info: Adaptive::<Watched<RigidSystem<$chart, $form>>>::info(&AdaptiveRk::$ctor(1e-6)),
-            se3: <$chart as PoseChart>::SE3,
-            run: |setup: &RigidSetup, tol: f64| {
-                let sys = RigidSystem::<$chart, $form>::new(setup.body.clone());
-                let x0 = sys.state_from(&setup.initial);
-                let mut m = AdaptiveRk::$ctor(tol);
-                run_adaptive(&sys, &mut m, x0, &setup.grid, &setup.limits, &setup.observe)
-            },
-        }
-    };
-}
-
-/// The generic integrators on one chart and formulation.
-macro_rules! generic {
-    ($v:ident, $chart:ty, $form:ty) => {
-        $v.push(fixed!($chart, $form, "euler", ExplicitRk::euler()));
-        $v.push(fixed!($chart, $form, "rk4", ExplicitRk::rk4()));
-        $v.push(adaptive!($chart, $form, "dopri5", dopri5));
-        $v.push(adaptive!($chart, $form, "dop853", dop853));
-        $v.push(fixed!(
-            $chart,
-            $form,
-            "implicit_midpoint",
-            ImplicitRk::implicit_midpoint()
-        ));
-        $v.push(fixed!($chart, $form, "gauss6", ImplicitRk::gauss6()));
-    };
-}
-
-/// The Crouch-Grossman methods on a Lie-group chart and formulation.
-macro_rules! crouch_grossman {
-    ($v:ident, $chart:ty, $form:ty) => {
-        $v.push(fixed!(
-            $chart,
-            $form,
-            "lie_euler",
-            CrouchGrossman::lie_euler()
-        ));
-        $v.push(fixed!($chart, $form, "cg3", CrouchGrossman::cg3()));
-    };
-}
-
-fn build() -> Vec<Variant> {
-    let mut v = Vec::new();
-    macro_rules! both_formulations {
-        ($chart:ident) => {
-            generic!(v, $chart, Body);
-            generic!(v, $chart, Spatial);
-        };
+/// Builds the variant of method `m` (listed as `name`) on chart `C` in formulation `F`: its
+/// facts on that system and its run, monomorphised on the system and the method.
+fn on_chart<C: PoseChart, F: Formulation, M: OdeMethod>(name: &'static str, m: &Arc<M>) -> Variant {
+    let run_m = Arc::clone(m);
+    Variant {
+        param: C::NAME,
+        integrator: name,
+        formulation: F::NAME,
+        info: m.info::<RigidSystem<C, F>>(),
+        se3: C::SE3,
+        run: Arc::new(move |setup: &RigidSetup, value: f64| {
+            let sys = RigidSystem::<C, F>::new(setup.body.clone());
+            let x0 = sys.state_from(&setup.initial);
+            let stepping = run_m.stepping(value);
+            run_m.run(
+                &sys,
+                x0,
+                stepping,
+                &setup.grid,
+                &setup.limits,
+                &setup.observe,
+            )
+        }),
     }
-    crate::for_each_chart!(both_formulations);
-    for_lie_charts(&mut v);
-    v.push(fixed!(So3, Body, "splitting", Splitting::new()));
-    v.push(fixed!(So3, Body, "lgvi", Lgvi::new()));
-    v.push(fixed!(So3, Body, "simo_wong", SimoWong::new()));
-    v.push(fixed!(So3, Body, "lie_gen_alpha", LieGenAlpha::<6, _>::default()));
+}
+
+/// Builds the variant of a method written for one system only, `RigidSystem<C, F>`: `make`
+/// gives a fresh stepper for each run.
+fn on_system<C: PoseChart, F: Formulation, M>(name: &'static str, make: fn() -> M) -> Variant
+where
+    M: FixedStep<RigidSystem<C, F>> + 'static,
+{
+    Variant {
+        param: C::NAME,
+        integrator: name,
+        formulation: F::NAME,
+        info: FixedStep::<RigidSystem<C, F>>::info(&make()),
+        se3: C::SE3,
+        run: Arc::new(move |setup: &RigidSetup, dt: f64| {
+            let sys = RigidSystem::<C, F>::new(setup.body.clone());
+            let x0 = sys.state_from(&setup.initial);
+            let mut m = make();
+            run_fixed(
+                &sys,
+                &mut m,
+                x0,
+                dt,
+                &setup.grid,
+                &setup.limits,
+                &setup.observe,
+            )
+        }),
+    }
+}
+
+/// Instantiates each method it is handed on every chart, in both formulations, where the
+/// method applies (`Where`), keeping where it applies beside each variant.
+struct EveryChart(Vec<(Where, Variant)>);
+
+impl Visit for EveryChart {
+    fn method<M: OdeMethod>(&mut self, name: &'static str, at: Where, m: M) {
+        let m = Arc::new(m);
+        let out = &mut self.0;
+        macro_rules! both_formulations {
+            ($chart:ident) => {
+                if at.admits::<RigidSystem<$chart, Body>>() {
+                    out.push((at, on_chart::<$chart, Body, M>(name, &m)));
+                    out.push((at, on_chart::<$chart, Spatial, M>(name, &m)));
+                }
+            };
+        }
+        crate::for_each_chart!(both_formulations);
+    }
+}
+
+/// The rigid body's own methods, each written for SO(3) x R^3 in the body formulation (or,
+/// compensated, on the long-horizon study's charts).
+fn own_methods(v: &mut Vec<Variant>) {
+    type So3Body = RigidSystem<So3, Body>;
+    v.push(on_system::<So3, Body, _>("splitting", Splitting::new));
+    v.push(on_system::<So3, Body, _>("lgvi", Lgvi::new));
+    v.push(on_system::<So3, Body, _>("simo_wong", SimoWong::new));
+    v.push(on_system::<So3, Body, _>(
+        "lie_gen_alpha",
+        LieGenAlpha::<6, <So3Body as System>::State>::default,
+    ));
     // Compensated summation, for the long-horizon study (stability::long_horizon).
-    for_kahan(&mut v);
+    v.push(
+        on_system::<Quat, Body, GaussKahan<RigidSystem<Quat, Body>>>(
+            "implicit_midpoint_kahan",
+            GaussKahan::implicit_midpoint,
+        ),
+    );
+    v.push(on_system::<So3, Body, GaussKahan<So3Body>>(
+        "implicit_midpoint_kahan",
+        GaussKahan::implicit_midpoint,
+    ));
+    v.push(
+        on_system::<Quat, Body, GaussKahan<RigidSystem<Quat, Body>>>(
+            "gauss6_kahan",
+            GaussKahan::gauss6,
+        ),
+    );
+    v.push(on_system::<So3, Body, GaussKahan<So3Body>>(
+        "gauss6_kahan",
+        GaussKahan::gauss6,
+    ));
+    v.push(on_system::<So3, Body, _>(
+        "simo_wong_kahan",
+        SimoWongKahan::new,
+    ));
+}
+
+/// The table: every built-in generic method (`methods::builtin::each`, the path a method
+/// written outside the crate takes too) on every chart where it applies, then the rigid
+/// body's own methods.
+/// The table is chart-major (what `list` and the gate's rows follow): the methods that apply
+/// everywhere chart by chart, each chart in both formulations, then the Lie-group methods
+/// likewise, then the body's own methods; the methods of a chart and formulation in the
+/// order they were handed.
+fn build() -> Vec<Variant> {
+    let mut every = EveryChart(vec![]);
+    crate::methods::builtin::each(&mut every);
+    let place = |n: &str, names: &[&str]| names.iter().position(|x| *x == n);
+    every.0.sort_by_key(|(at, v)| {
+        let block = usize::from(*at == Where::LieGroup);
+        (
+            block,
+            place(v.param, PARAMS),
+            place(v.formulation, FORMULATIONS),
+        )
+    });
+    let mut v: Vec<Variant> = every.0.into_iter().map(|(_, v)| v).collect();
+    own_methods(&mut v);
     for x in &v {
         debug_assert_eq!(x.info.name, x.integrator, "{x:?}");
     }
     v
-}
-
-/// The compensated-summation variants (methods::compensated), on the long-horizon study's
-/// charts only.
-fn for_kahan(v: &mut Vec<Variant>) {
-    v.push(fixed!(
-        Quat,
-        Body,
-        "implicit_midpoint_kahan",
-        GaussKahan::implicit_midpoint()
-    ));
-    v.push(fixed!(
-        So3,
-        Body,
-        "implicit_midpoint_kahan",
-        GaussKahan::implicit_midpoint()
-    ));
-    v.push(fixed!(Quat, Body, "gauss6_kahan", GaussKahan::gauss6()));
-    v.push(fixed!(So3, Body, "gauss6_kahan", GaussKahan::gauss6()));
-    v.push(fixed!(So3, Body, "simo_wong_kahan", SimoWongKahan::new()));
-}
-
-/// The Crouch-Grossman methods on the three Lie-group charts.
-fn for_lie_charts(v: &mut Vec<Variant>) {
-    crouch_grossman!(v, So3, Body);
-    crouch_grossman!(v, So3, Spatial);
-    crouch_grossman!(v, Se3Hq, Body);
-    crouch_grossman!(v, Se3Hq, Spatial);
-    crouch_grossman!(v, DualQuat, Body);
-    crouch_grossman!(v, DualQuat, Spatial);
 }
 
 /// The table of registered variants.
