@@ -47,6 +47,7 @@ fn real_quick_tier_passes_gates_and_baseline() {
         cases: vec![],
         scenes: vec![],
         require_stability: true,
+        catalogue: mbdbench::catalogue::Catalogue::builtin(),
     };
     let sopts = mbdbench::stability::StudyOptions {
         quick: true,

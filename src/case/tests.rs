@@ -82,7 +82,8 @@ fn embedded_files_load() {
             c.name
         );
         // A family without adaptive methods (the fiber column) has no tolerance ladder.
-        let adaptive = (crate::catalogue::family_of(c).variants)()
+        let adaptive = crate::catalogue::family_of(c)
+            .variants()
             .iter()
             .any(|v| v.info.adaptive);
         for s in &c.scenes {

@@ -4,14 +4,17 @@ use super::*;
 
 pub(super) fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
     let cases = load_cases(common)?;
-    let problems = crate::catalogue::problems(&cases, &[], &[])?;
-    // The families the cases use, in family-table order.
-    let families: Vec<&'static Family> = crate::catalogue::FAMILIES
+    let catalogue = common.catalogue();
+    let problems = catalogue.problems(&cases, &[], &[])?;
+    // The families the cases use, in family-table order (the catalogue's copies, with the
+    // methods it registered).
+    let families: Vec<&'static Family> = catalogue
+        .families()
         .iter()
         .copied()
         .filter(|f| problems.iter().any(|p| std::ptr::eq(p.family(), *f)))
         .collect();
-    let registered: usize = families.iter().map(|f| (f.variants)().len()).sum();
+    let registered: usize = families.iter().map(|f| f.variants().len()).sum();
     let mut scenes = vec![];
     for p in &problems {
         let variants: Vec<_> = problem::matrix(p.family())
@@ -49,7 +52,7 @@ pub(super) fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
         }
     }
     crate::say!("\nregistered variants: {registered}");
-    for v in families.iter().flat_map(|f| (f.variants)()) {
+    for v in families.iter().flat_map(|f| f.variants()) {
         crate::say!(
             "  {:<12} {:<18} {:<8} order {} {}{}{}",
             v.param,
@@ -79,7 +82,7 @@ pub(super) fn cmd_list(common: &Common, json: bool) -> Result<i32, String> {
         crate::say!("  {} combinations: {reason}", list.len());
     }
     for p in &problems {
-        for v in (p.family().variants)() {
+        for v in p.family().variants() {
             if let Some(r) = p.na_reason(v) {
                 crate::say!(
                     "  {}/{}: {}/{}/{}: {r}",

@@ -46,6 +46,32 @@ pub struct Common {
     /// Folder of stored references (default: references/ of the source tree).
     #[arg(long, global = true)]
     pub references: Option<PathBuf>,
+    /// The catalogue the commands run with ([`execute_with`]); None: the built-in one.
+    #[arg(skip)]
+    pub catalogue: Option<crate::catalogue::Catalogue>,
+}
+
+impl Common {
+    /// The catalogue the commands run with: the one given to [`execute_with`], else the
+    /// built-in one.
+    pub fn catalogue(&self) -> crate::catalogue::Catalogue {
+        self.catalogue
+            .clone()
+            .unwrap_or_else(crate::catalogue::Catalogue::builtin)
+    }
+
+    /// The references folder: `--references`, else the catalogue's, else `references/` of
+    /// the source tree.
+    pub fn references(&self) -> PathBuf {
+        self.references
+            .clone()
+            .or_else(|| {
+                self.catalogue
+                    .as_ref()
+                    .and_then(|c| c.references().map(Path::to_path_buf))
+            })
+            .unwrap_or_else(default_references)
+    }
 }
 
 /// Filters selecting cases, scenes and variants (repeatable; empty = all).
@@ -306,10 +332,11 @@ pub fn default_references() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("references")
 }
 
+/// The cases: `--cases`, else the catalogue's (its case folder, or the embedded cases).
 fn load_cases(common: &Common) -> Result<Vec<Case>, String> {
     match &common.cases {
         Some(dir) => crate::catalogue::load_dir(dir),
-        None => crate::catalogue::embedded(),
+        None => common.catalogue().cases(),
     }
     .map_err(|e| e.to_string())
 }
@@ -350,9 +377,29 @@ fn jobs_or_default(j: Option<usize>) -> usize {
     }
 }
 
-/// Runs the parsed command line; returns the exit code. Errors are printed to stderr.
+/// Runs the parsed command line with the built-in catalogue; returns the exit code. Errors
+/// are printed to stderr.
 pub fn execute(cli: Cli) -> i32 {
-    let common = cli.common.clone();
+    execute_with(crate::catalogue::Catalogue::builtin(), cli)
+}
+
+/// Runs the parsed command line with `catalogue` (a library user's, with the methods it
+/// registered: `examples/byo_integrator.rs`); returns the exit code.
+///
+/// # Example
+///
+/// ```no_run
+/// use clap::Parser;
+/// use mbdbench::catalogue::Catalogue;
+/// use mbdbench::methods::{builtin::Rk4, Fixed, Where};
+///
+/// let cat = Catalogue::builtin().with_method("my_rk4", Where::Everywhere, Fixed(Rk4)).unwrap();
+/// let cli = mbdbench::cli::Cli::parse_from(["mbdbench", "run", "--quick", "--out", "out"]);
+/// std::process::exit(mbdbench::cli::execute_with(cat, cli));
+/// ```
+pub fn execute_with(catalogue: crate::catalogue::Catalogue, cli: Cli) -> i32 {
+    let mut common = cli.common.clone();
+    common.catalogue = Some(catalogue);
     let result = match cli.command {
         None => main_job::run(&common, cli.full_stability),
         Some(Command::List { json }) => cmd_list(&common, json),
@@ -441,7 +488,7 @@ fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
         integrator: a.filters.integrator.clone(),
         formulation: a.filters.formulation.clone(),
     };
-    names::check_variant_names(&filter)?;
+    names::check_variant_names(&filter, &common.catalogue())?;
     // Validates the case and scene names (an unknown one is bad input).
     crate::case::select(&cases, &a.filters.case, &a.filters.scene)?;
     crate::reference::check_writable(&a.out)?;
@@ -449,7 +496,7 @@ fn cmd_stability(common: &Common, a: &StabilityArgs) -> Result<i32, String> {
         quick: a.quick,
         jobs: jobs_or_default(a.jobs),
         out: a.out.clone(),
-        references: common.references.clone().unwrap_or_else(default_references),
+        references: common.references(),
         progress: true,
     };
     let t0 = std::time::Instant::now();
@@ -493,8 +540,8 @@ fn cmd_report(
         .map(|p| p.to_path_buf())
         .unwrap_or_else(|| PathBuf::from("."));
     let out = out.map(|p| p.to_path_buf()).unwrap_or_else(|| dir.clone());
-    let mut opts =
-        crate::gate::GateOptions::new(common.references.clone().unwrap_or_else(default_references));
+    let mut opts = crate::gate::GateOptions::new(common.references());
+    opts.catalogue = common.catalogue();
     // The gates of the summary's tier: the page's verdict is `mbdbench gate`'s (with
     // `--quick` for a quick summary) on the same files.
     opts.quick = crate::gate::summary_tier(&cases, &summary) == crate::selection::Tier::Quick;
@@ -606,10 +653,11 @@ fn cmd_gate(common: &Common, a: &GateArgs) -> Result<i32, String> {
         quick: a.quick,
         baseline: a.baseline.clone(),
         factor: a.factor,
-        references: common.references.clone().unwrap_or_else(default_references),
+        references: common.references(),
         cases: a.case.clone(),
         scenes: a.scene.clone(),
         require_stability: a.require_stability,
+        catalogue: common.catalogue(),
     };
     let rows = crate::gate::evaluate(&cases, &summary, stability.as_ref(), &opts)
         .map_err(|e| e.to_string())?;
@@ -634,7 +682,7 @@ fn advice_for(
     summary: &crate::summary::Summary,
     opts: &crate::advise::Options,
 ) -> crate::advise::Advice {
-    let root = common.references.clone().unwrap_or_else(default_references);
+    let root = common.references();
     let reference = |c: &Case, scene: &str| {
         crate::advise::stored_reference(
             &root,
@@ -655,7 +703,7 @@ fn physical_advice_for(
     cases: &[Case],
     summary: &crate::summary::Summary,
 ) -> crate::advise::Advice {
-    let root = common.references.clone().unwrap_or_else(default_references);
+    let root = common.references();
     let reference = |c: &Case, scene: &str| match crate::catalogue::family_of(c).figures.physical {
         Some(view) => crate::advise::stored_reference(
             &root,
@@ -722,8 +770,10 @@ fn cmd_reference(
         return Err(format!("--case {case_name}: no such case"));
     }
     let scene_filter: Vec<String> = scene.map(|s| vec![s.to_string()]).unwrap_or_default();
-    let problems = crate::catalogue::problems(&cases, &[case_name.to_string()], &scene_filter)?;
-    let root = common.references.clone().unwrap_or_else(default_references);
+    let problems = common
+        .catalogue()
+        .problems(&cases, &[case_name.to_string()], &scene_filter)?;
+    let root = common.references();
     let mut all_ok = true;
     for p in &problems {
         if check {

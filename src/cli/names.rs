@@ -9,7 +9,7 @@ use crate::selection::VariantFilter;
 /// The integrators a family registers, in its table order, without repeats.
 fn integrators_of(f: &Family) -> Vec<&'static str> {
     let mut out: Vec<&'static str> = vec![];
-    for v in (f.variants)() {
+    for v in f.variants() {
         if !out.contains(&v.integrator) {
             out.push(v.integrator);
         }
@@ -100,8 +100,11 @@ pub fn scene_help() -> String {
 
 /// Bad input when a variant filter names nothing any family registers: each unknown name
 /// with the valid names of its axis.
-pub fn check_variant_names(filter: &VariantFilter) -> Result<(), String> {
-    let bad = crate::catalogue::unknown_names(filter);
+pub fn check_variant_names(
+    filter: &VariantFilter,
+    catalogue: &crate::catalogue::Catalogue,
+) -> Result<(), String> {
+    let bad = catalogue.unknown_names(filter);
     if bad.is_empty() {
         return Ok(());
     }
@@ -127,7 +130,7 @@ mod tests {
     fn help_and_errors_list_the_valid_names() {
         let (p, i, f) = (param_help(), integrator_help(), formulation_help());
         for fam in FAMILIES {
-            for v in (fam.variants)() {
+            for v in fam.variants() {
                 assert!(i.contains(v.integrator), "{}", v.integrator);
                 assert!(p.contains(v.param), "{}", v.param);
                 assert!(f.contains(v.formulation), "{}", v.formulation);
@@ -138,14 +141,14 @@ mod tests {
             integrator: vec!["rk5".into()],
             formulation: vec![],
         };
-        let e = check_variant_names(&bad).unwrap_err();
+        let e = check_variant_names(&bad, &crate::catalogue::Catalogue::builtin()).unwrap_err();
         assert!(e.contains("--integrator rk5"), "{e}");
         assert!(
             e.contains("valid --integrator names") && e.contains("dopri5"),
             "{e}"
         );
         assert!(!e.contains("valid --param"), "{e}");
-        assert!(check_variant_names(&VariantFilter::default()).is_ok());
+        assert!(check_variant_names(&VariantFilter::default(), &crate::catalogue::Catalogue::builtin()).is_ok());
         assert!(case_help().contains("nine_spring") && scene_help().contains("spin_d0"));
     }
 }

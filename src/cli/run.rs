@@ -148,13 +148,15 @@ pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf
             a.max_run_s
         ));
     }
-    let problems = crate::catalogue::problems(&cases, &a.filters.case, &a.filters.scene)?;
+    let problems = common
+        .catalogue()
+        .problems(&cases, &a.filters.case, &a.filters.scene)?;
     let filter = VariantFilter {
         param: a.filters.param.clone(),
         integrator: a.filters.integrator.clone(),
         formulation: a.filters.formulation.clone(),
     };
-    names::check_variant_names(&filter)?;
+    names::check_variant_names(&filter, &common.catalogue())?;
     if let Some(t) = a.t_end {
         for p in &problems {
             check_t_end(t, p.as_ref())?;
@@ -165,7 +167,7 @@ pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf
         jobs: jobs_or_default(a.jobs),
         out: a.out.clone(),
         t_end: a.t_end,
-        references: common.references.clone().unwrap_or_else(default_references),
+        references: common.references(),
         progress: true,
         repeats: 3,
         serial_timing: a.serial_timing,

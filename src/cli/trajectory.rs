@@ -7,7 +7,7 @@ use super::*;
 
 pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32, String> {
     let cases = load_cases(common)?;
-    let mut p = compile_scene(&cases, a)?;
+    let mut p = compile_scene(common, &cases, a)?;
     let family = p.family();
     check_axis_names(family, a)?;
     let (param, formulation, v) = choose_variant(&*p, family, a)?;
@@ -21,7 +21,11 @@ pub(super) fn cmd_trajectory(common: &Common, a: &TrajectoryArgs) -> Result<i32,
 }
 
 /// The compiled problem of `--case`'s `--scene`, refusing a scene the case does not have.
-fn compile_scene(cases: &[Case], a: &TrajectoryArgs) -> Result<Box<dyn problem::Problem>, String> {
+fn compile_scene(
+    common: &Common,
+    cases: &[Case],
+    a: &TrajectoryArgs,
+) -> Result<Box<dyn problem::Problem>, String> {
     if let Some(c) = cases.iter().find(|c| c.name == a.case)
         && c.scene(&a.scene).is_none()
     {
@@ -33,14 +37,16 @@ fn compile_scene(cases: &[Case], a: &TrajectoryArgs) -> Result<Box<dyn problem::
             known.join(", ")
         ));
     }
-    crate::catalogue::problems(
-        cases,
-        std::slice::from_ref(&a.case),
-        std::slice::from_ref(&a.scene),
-    )?
-    .into_iter()
-    .find(|p| p.case() == a.case && p.scene() == a.scene)
-    .ok_or_else(|| format!("--scene {}: not in case {}", a.scene, a.case))
+    common
+        .catalogue()
+        .problems(
+            cases,
+            std::slice::from_ref(&a.case),
+            std::slice::from_ref(&a.scene),
+        )?
+        .into_iter()
+        .find(|p| p.case() == a.case && p.scene() == a.scene)
+        .ok_or_else(|| format!("--scene {}: not in case {}", a.scene, a.case))
 }
 
 /// Refuses an unknown name on an axis with the family's valid names, as `run` does.

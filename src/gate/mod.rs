@@ -138,6 +138,9 @@ pub struct GateOptions {
     /// A gate that needs `stability.json` fails when it is absent (`--require-stability`);
     /// otherwise it is skipped.
     pub require_stability: bool,
+    /// The catalogue the summary was made with: its families (with the methods it registered)
+    /// name what a gate may select.
+    pub catalogue: crate::catalogue::Catalogue,
 }
 
 impl GateOptions {
@@ -151,6 +154,7 @@ impl GateOptions {
             cases: vec![],
             scenes: vec![],
             require_stability: false,
+            catalogue: crate::catalogue::Catalogue::builtin(),
         }
     }
 }
@@ -281,7 +285,7 @@ fn expand<'p>(
     let mut na: BTreeSet<String> = BTreeSet::new();
     for problem in problems.iter().filter(|p| keep(&f.scene, p.scene())) {
         let problem = &**problem;
-        for v in (problem.family().variants)() {
+        for v in problem.family().variants() {
             let adaptive = v.info.adaptive;
             if !(keep(&f.param, v.param)
                 && keep(&f.integrator, v.integrator)
@@ -528,7 +532,7 @@ pub fn evaluate(
                 });
             }
             check_threshold(c, i, g)?;
-            check_where_values(c, i, g)?;
+            check_where_values(c, i, g, &opts.catalogue)?;
         }
     }
     let index = RecordIndex::new(summary, stability);
@@ -548,11 +552,10 @@ pub fn evaluate(
         if gated.is_empty() {
             continue;
         }
-        let family = crate::catalogue::family_of(c);
         let problems = c
             .scenes
             .iter()
-            .map(|s| (family.compile)(c, s))
+            .map(|s| opts.catalogue.compile(c, s))
             .collect::<Result<Vec<_>, _>>()?;
         for (i, g) in gated {
             for p in expand(c, i, g, &problems, opts.quick)? {

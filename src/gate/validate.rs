@@ -77,7 +77,12 @@ pub(super) fn check_threshold(c: &Case, index: usize, g: &Gate) -> Result<(), Ga
 /// Each `where` value must name something that exists: a registered parameterization,
 /// integrator or formulation, a step on some fixed-step ladder (either tier) of the selected
 /// scenes, a tolerance on some tolerance ladder.
-pub(super) fn check_where_values(c: &Case, index: usize, g: &Gate) -> Result<(), GateError> {
+pub(super) fn check_where_values(
+    c: &Case,
+    index: usize,
+    g: &Gate,
+    catalogue: &crate::catalogue::Catalogue,
+) -> Result<(), GateError> {
     let f = &g.filter;
     let err = |key: String, message: String| GateError::Where {
         file: c.file.clone(),
@@ -85,7 +90,7 @@ pub(super) fn check_where_values(c: &Case, index: usize, g: &Gate) -> Result<(),
         key,
         message,
     };
-    let vs = (crate::catalogue::family_of(c).variants)();
+    let vs = catalogue.family_or_builtin(c).variants();
     let names = |pick: fn(&Variant) -> &'static str| {
         let mut n: Vec<&str> = vs.iter().map(pick).collect();
         n.sort_unstable();

@@ -253,3 +253,24 @@ pub trait Visit {
     /// One method: `name` is the name its records carry (the integrator axis).
     fn method<M: OdeMethod>(&mut self, name: &'static str, at: Where, m: M);
 }
+
+/// A shared method is the method: a catalogue hands one registered method to every family.
+impl<M: OdeMethod> OdeMethod for std::sync::Arc<M> {
+    fn info<S: OdeSystem>(&self) -> MethodInfo {
+        (**self).info::<S>()
+    }
+    fn adaptive(&self) -> bool {
+        (**self).adaptive()
+    }
+    fn run<S: OdeSystem>(
+        &self,
+        sys: &S,
+        x0: S::State,
+        stepping: Stepping,
+        grid: &Grid,
+        limits: &Limits,
+        observe: &Observe,
+    ) -> Result<RunOutput<S::Obs>, String> {
+        (**self).run(sys, x0, stepping, grid, limits, observe)
+    }
+}

@@ -1,4 +1,4 @@
-//! Tests of the method face: a method written once outside the built-ins (Ralston's
+//! Tests of the method face: a method written once outside the built-ins (Kutta's
 //! third-order Runge-Kutta, as RKMK on Lie groups) keeps its order on an additive system and
 //! on the rigid body's Lie-group chart; the built-in factories behind the face give the
 //! numbers of a direct call bit for bit; a stepping of the wrong kind is an error; and the
@@ -16,14 +16,15 @@ use crate::model::rigid_body::RigidSystem;
 use crate::rotation::{Body, Quat};
 use std::marker::PhantomData;
 
-/// Ralston's third-order method (c = 0, 1/2, 3/4; b = 2/9, 1/3, 4/9), written as a user
-/// would: once, for every system, with the Munthe-Kaas correction on a Lie group.
-struct Ralston3;
-struct Ralston3On<S>(PhantomData<S>);
+/// Kutta's third-order method (c = 0, 1/2, 1; a31 = -1, a32 = 2; b = 1/6, 2/3, 1/6),
+/// written as a user would: once, for every system, with the Munthe-Kaas correction on a Lie
+/// group.
+struct Kutta3;
+struct Kutta3On<S>(PhantomData<S>);
 
-impl<S: System> FixedStep<S> for Ralston3On<S> {
+impl<S: System> FixedStep<S> for Kutta3On<S> {
     fn info(&self) -> MethodInfo {
-        MethodInfo::new("ralston3", MethodKind::Explicit, 3)
+        MethodInfo::new("kutta3", MethodKind::Explicit, 3)
             .with_stages(3)
             .with_lie_group(S::LIE)
     }
@@ -37,20 +38,22 @@ impl<S: System> FixedStep<S> for Ralston3On<S> {
     ) -> Result<(), Failure> {
         let k1 = sys.rhs(t, x);
         let (_, _, k2) = sys.rkmk_stage(t + 0.5 * h, x, &k1.scaled(0.5 * h));
-        let (_, _, k3) = sys.rkmk_stage(t + 0.75 * h, x, &k2.scaled(0.75 * h));
+        let mut theta3 = k2.scaled(2.0 * h);
+        theta3.axpy(-h, &k1);
+        let (_, _, k3) = sys.rkmk_stage(t + h, x, &theta3);
         stats.rhs_evals += 3;
-        let mut dx = k1.scaled(2.0 / 9.0 * h);
-        dx.axpy(h / 3.0, &k2);
-        dx.axpy(4.0 / 9.0 * h, &k3);
+        let mut dx = k1.scaled(h / 6.0);
+        dx.axpy(2.0 / 3.0 * h, &k2);
+        dx.axpy(h / 6.0, &k3);
         *x = sys.retract(x, &dx);
         Ok(())
     }
 }
 
-impl FixedStepMethod for Ralston3 {
-    type On<S: System> = Ralston3On<S>;
-    fn on<S: System>(&self) -> Ralston3On<S> {
-        Ralston3On(PhantomData)
+impl FixedStepMethod for Kutta3 {
+    type On<S: System> = Kutta3On<S>;
+    fn on<S: System>(&self) -> Kutta3On<S> {
+        Kutta3On(PhantomData)
     }
 }
 
@@ -73,18 +76,18 @@ fn a_method_written_once_keeps_its_order_on_vector_spaces_and_lie_groups() {
     let osc = Oscillator;
     let errs: Vec<f64> = [20, 40, 80, 160]
         .iter()
-        .map(|&n| (steps(&Ralston3, &osc, osc.initial(), 2.0, n) - osc.exact(2.0)).norm())
+        .map(|&n| (steps(&Kutta3, &osc, osc.initial(), 2.0, n) - osc.exact(2.0)).norm())
         .collect();
-    assert_last_order("ralston3 oscillator", &errs, 3.0);
+    assert_last_order("kutta3 oscillator", &errs, 3.0);
     let sys = rotor_system();
     let exact = rotor_reference(&sys, 1.0);
     let errs: Vec<f64> = [20, 40, 80, 160]
         .iter()
-        .map(|&n| rotor_distance(&steps(&Ralston3, &sys, rotor_initial(&sys), 1.0, n), &exact))
+        .map(|&n| rotor_distance(&steps(&Kutta3, &sys, rotor_initial(&sys), 1.0, n), &exact))
         .collect();
-    assert_last_order("ralston3 so3 rotor", &errs, 3.0);
+    assert_last_order("kutta3 so3 rotor", &errs, 3.0);
     assert!(
-        Fixed(Ralston3)
+        Fixed(Kutta3)
             .info::<crate::integrate::test_support::RotorSys>()
             .lie_group
     );

@@ -14,7 +14,7 @@
 //! let n = family.axes.params.len() * family.axes.integrators.len() * family.axes.formulations.len();
 //! assert_eq!(cells.len(), n);
 //! let registered = cells.iter().filter(|c| matches!(c.entry, Entry::Registered(_))).count();
-//! assert_eq!(registered, (family.variants)().len());
+//! assert_eq!(registered, family.variants().len());
 //! ```
 use super::{Family, Variant};
 

@@ -106,15 +106,55 @@ pub struct Column {
     pub unit: &'static str,
 }
 
-/// One registered variant of a family: its names on the three axes and its method facts.
-/// `index` is its place in the family's own table (the family dispatches on it).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// One registered variant of a family: its names on the three axes, its method facts and its
+/// run. `index` is its place in the family's table (unique within the family; a key for
+/// caches), `runner` the family's own run function of the variant, which only the family
+/// reads ([`Runner::get`]): a variant registered from outside the crate carries its run the
+/// same way, so the family runs it without a table of its own.
+#[derive(Debug, Clone)]
 pub struct Variant {
     pub param: &'static str,
     pub integrator: &'static str,
     pub formulation: &'static str,
     pub info: MethodInfo,
     pub index: usize,
+    pub runner: Runner,
+}
+
+/// Two variants are the same when their names, facts and place agree (the run is what they
+/// name).
+impl PartialEq for Variant {
+    fn eq(&self, o: &Variant) -> bool {
+        (
+            self.param,
+            self.integrator,
+            self.formulation,
+            self.info,
+            self.index,
+        ) == (o.param, o.integrator, o.formulation, o.info, o.index)
+    }
+}
+
+/// A family's run function of one variant, its type known only to the family: one downcast
+/// per run, never per step.
+#[derive(Clone)]
+pub struct Runner(std::sync::Arc<dyn std::any::Any + Send + Sync>);
+
+impl Runner {
+    /// Wraps a family's run function (any `'static` value the family reads back by type).
+    pub fn new<R: std::any::Any + Send + Sync>(run: R) -> Runner {
+        Runner(std::sync::Arc::new(run))
+    }
+    /// The run function, if it is of the family's type `R`.
+    pub fn get<R: std::any::Any>(&self) -> Option<&R> {
+        self.0.downcast_ref::<R>()
+    }
+}
+
+impl std::fmt::Debug for Runner {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Runner")
+    }
 }
 
 impl Variant {
@@ -126,36 +166,45 @@ impl Variant {
             Stepping::Dt(value)
         }
     }
+
+    /// The family's run function of this variant, or an error naming the variant when it
+    /// carries another family's (a variant handed to the wrong family's problem).
+    pub fn run_fn<R: std::any::Any>(&self) -> Result<&R, String> {
+        self.runner.get::<R>().ok_or_else(|| {
+            format!(
+                "{}/{}/{} carries no run of this family",
+                self.param, self.integrator, self.formulation
+            )
+        })
+    }
 }
 
 /// A family's variant table: each row `(param, integrator, formulation, info, run)` becomes
-/// its `Variant`, numbered in row order (`index` is its place in the table), beside its run
+/// its `Variant`, numbered in row order (`index` is its place in the table), carrying its run
 /// function.
-pub fn variant_table<R>(
+pub fn variant_table<R: Clone + std::any::Any + Send + Sync>(
     rows: impl IntoIterator<Item = (&'static str, &'static str, &'static str, MethodInfo, R)>,
-) -> Vec<(Variant, R)> {
+) -> Vec<Variant> {
     rows.into_iter()
         .enumerate()
-        .map(|(index, (param, integrator, formulation, info, run))| {
-            (
-                Variant {
-                    param,
-                    integrator,
-                    formulation,
-                    info,
-                    index,
-                },
-                run,
-            )
-        })
+        .map(
+            |(index, (param, integrator, formulation, info, run))| Variant {
+                param,
+                integrator,
+                formulation,
+                info,
+                index,
+                runner: Runner::new(run),
+            },
+        )
         .collect()
 }
 
 /// [`variant_table`] of a family whose only parameterization is `none`: rows
 /// `(integrator, formulation, info, run)`.
-pub fn none_param_table<R>(
+pub fn none_param_table<R: Clone + std::any::Any + Send + Sync>(
     rows: impl IntoIterator<Item = (&'static str, &'static str, MethodInfo, R)>,
-) -> Vec<(Variant, R)> {
+) -> Vec<Variant> {
     variant_table(
         rows.into_iter()
             .map(|(i, f, info, run)| ("none", i, f, info, run)),
@@ -165,7 +214,17 @@ pub fn none_param_table<R>(
 /// Compiles one scene of a validated case into a runnable problem.
 pub type Compile = fn(&Case, &Scene) -> Result<Box<dyn Problem>, CaseError>;
 
+/// Where a family's variants come from: its own table (built once, on first use), or that
+/// table extended by a catalogue with methods registered from outside
+/// (`catalogue::Catalogue::with_method`).
+#[derive(Clone, Copy)]
+pub enum Variants {
+    Table(fn() -> &'static [Variant]),
+    Extended(&'static [Variant]),
+}
+
 /// A model family, described statically.
+#[derive(Clone)]
 pub struct Family {
     /// The case file's `model` key.
     pub model: &'static str,
@@ -174,8 +233,8 @@ pub struct Family {
     pub metrics: &'static [Metric],
     /// The trajectory and reference columns after `t`.
     pub columns: &'static [Column],
-    /// The registered variants.
-    pub variants: fn() -> &'static [Variant],
+    /// The registered variants ([`Family::variants`]).
+    pub variants: Variants,
     /// Why a combination of axis names absent from the table is `n/a`.
     pub static_na_reason: fn(&str, &str, &str) -> String,
     /// Parses and validates a whole case file of this family (`catalogue::load_str` dispatches
@@ -224,6 +283,14 @@ impl std::fmt::Debug for Family {
 }
 
 impl Family {
+    /// The registered variants, in table order.
+    pub fn variants(&self) -> &'static [Variant] {
+        match self.variants {
+            Variants::Table(table) => table(),
+            Variants::Extended(all) => all,
+        }
+    }
+
     /// A registered variant by its three names.
     pub fn find(
         &self,
@@ -231,7 +298,7 @@ impl Family {
         integrator: &str,
         formulation: &str,
     ) -> Option<&'static Variant> {
-        (self.variants)().iter().find(|v| {
+        self.variants().iter().find(|v| {
             v.param == param && v.integrator == integrator && v.formulation == formulation
         })
     }
@@ -338,6 +405,9 @@ macro_rules! scene_problem_methods {
         fn header(&self) -> &$crate::problem::SceneHeader {
             &self.header
         }
+        fn header_mut(&mut self) -> &mut $crate::problem::SceneHeader {
+            &mut self.header
+        }
         fn grid(&self) -> &$crate::run::Grid {
             &self.setup.grid
         }
@@ -373,6 +443,10 @@ pub(crate) use scene_problem_methods;
 pub trait Problem: Send + Sync {
     /// The scene's header: its family, names, hashes and primary metric.
     fn header(&self) -> &SceneHeader;
+    /// The header to change: a catalogue binds a compiled problem to its own copy of the
+    /// family (`catalogue::Catalogue::problems`), whose variants include the methods it
+    /// registered.
+    fn header_mut(&mut self) -> &mut SceneHeader;
     /// The time grid the family's runs step on (its run setup's: one copy).
     fn grid(&self) -> &Grid;
     fn family(&self) -> &'static Family {

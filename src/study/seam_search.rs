@@ -209,7 +209,7 @@ pub fn study(
     let mut jobs: Vec<(usize, &'static Variant)> = vec![];
     for (i, s) in scenes.iter().enumerate() {
         let family = s.problem.family();
-        for v in (family.variants)() {
+        for v in family.variants() {
             if filter.admits(v.param, v.integrator, v.formulation)
                 && (!opts.quick || family.stability_quick.contains(&v.integrator))
                 && !v.info.adaptive

@@ -251,7 +251,7 @@ pub static FAMILY: Family = Family {
         column("energy_dissipated", "J"),
         column("work_input", "J"),
     ],
-    variants,
+    variants: crate::problem::Variants::Table(variants),
     static_na_reason,
     load: super::case::load,
     inputs: super::case::inputs,
@@ -399,8 +399,8 @@ macro_rules! so3_rows {
 }
 
 /// The family's table: the variant and its run function.
-pub fn table() -> &'static [(Variant, RunFn)] {
-    static TABLE: std::sync::OnceLock<Vec<(Variant, RunFn)>> = std::sync::OnceLock::new();
+pub fn table() -> &'static [Variant] {
+    static TABLE: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
     TABLE.get_or_init(|| {
         let mut rows: Vec<(&'static str, &'static str, &'static str, MethodInfo, RunFn)> = vec![];
         so3_rows!(rows);
@@ -412,8 +412,7 @@ pub fn table() -> &'static [(Variant, RunFn)] {
 }
 
 fn variants() -> &'static [Variant] {
-    static V: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
-    V.get_or_init(|| table().iter().map(|(v, _)| *v).collect())
+    table()
 }
 
 fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {

@@ -18,7 +18,7 @@ use std::path::Path;
 
 use super::case::{ColumnCase, ColumnScene, Loading};
 use super::elastica::{elastica_tip, rollup_tip};
-use super::family::{FAMILY, table};
+use super::family::{FAMILY, RunFn};
 use super::opensees::{self, External};
 use super::opensees_model;
 use super::reference::{CrossCheck, ExactReference, Provenance, Track};
@@ -179,6 +179,9 @@ impl Problem for FiberProblem {
     fn header(&self) -> &SceneHeader {
         &self.header
     }
+    fn header_mut(&mut self) -> &mut SceneHeader {
+        &mut self.header
+    }
     fn grid(&self) -> &Grid {
         &self.setup.grid
     }
@@ -287,7 +290,7 @@ impl Problem for FiberProblem {
             Want::Timing => Keep::Final,
             Want::Scored | Want::Trajectory => Keep::Samples,
         };
-        let out = (table()[v.index].1)(&self.setup, dt, keep)?;
+        let out = (v.run_fn::<RunFn>()?)(&self.setup, dt, keep)?;
         let mut o = Outcome {
             stats: out.stats,
             failure: out.failure.clone(),

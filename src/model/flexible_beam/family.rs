@@ -175,7 +175,7 @@ pub static FAMILY: Family = Family {
         column("momentum", "N m s"),
         column("constraint", "m"),
     ],
-    variants,
+    variants: crate::problem::Variants::Table(variants),
     static_na_reason,
     load: super::case::load,
     inputs: super::case::inputs,
@@ -354,15 +354,15 @@ fn ode<M: OdeMethod>(
     }
 }
 
-/// The ODE forms, in table order.
-const ODE_FORMS: [&str; 7] = [
+/// The ODE forms, in table order (`aigc_index3` is a DAE: its structural method alone runs
+/// it).
+const ODE_FORMS: [&str; 6] = [
     "modal_stiffened",
     "modal_linear",
     "aigc_baumgarte",
     "aigc_baumgarte_soft",
     "aigc_baumgarte_stiff",
     "aigc_projection",
-    "aigc_index3",
 ];
 
 /// The built-in generic methods a form does not run (a method from outside the crate runs on
@@ -403,6 +403,14 @@ impl Visit for OdeRows {
     }
 }
 
+/// Method `m` (listed as `name`) on every ODE form that runs it: the variants a catalogue
+/// adds for a method registered from outside the crate.
+pub fn ode_variants<M: OdeMethod>(name: &'static str, at: Where, m: M) -> Vec<Variant> {
+    let mut rows = OdeRows(vec![]);
+    rows.method(name, at, m);
+    crate::problem::none_param_table(rows.0)
+}
+
 /// One row of the table per `(integrator, formulation)`.
 macro_rules! rows {
     (structural $v:ident, $info:expr, $form:literal) => {
@@ -428,8 +436,8 @@ macro_rules! rows {
 }
 
 /// The family's table: the variant and its run function.
-pub fn table() -> &'static [(Variant, RunFn)] {
-    static TABLE: std::sync::OnceLock<Vec<(Variant, RunFn)>> = std::sync::OnceLock::new();
+pub fn table() -> &'static [Variant] {
+    static TABLE: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
     TABLE.get_or_init(|| {
         let info = infos();
         let mut ode_rows = OdeRows(vec![]);
@@ -448,7 +456,7 @@ pub fn table() -> &'static [(Variant, RunFn)] {
         rows!(structural rows, info, "modal_stiffened");
         odes("modal_stiffened", &mut rows);
         rows!(structural rows, info, "modal_linear");
-        for form in &ODE_FORMS[1..6] {
+        for form in &ODE_FORMS[1..] {
             odes(form, &mut rows);
         }
         let i3 = Method::<Modal>::info(&GenAlphaI3::new(0.9, newton()).expect("valid"));
@@ -468,8 +476,7 @@ pub fn table() -> &'static [(Variant, RunFn)] {
 }
 
 fn variants() -> &'static [Variant] {
-    static V: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
-    V.get_or_init(|| table().iter().map(|(v, _)| *v).collect())
+    table()
 }
 
 fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {

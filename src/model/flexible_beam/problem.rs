@@ -17,7 +17,7 @@ use std::path::Path;
 
 use super::base::Base;
 use super::case::{BeamScene, Numerics};
-use super::family::{FAMILY, table};
+use super::family::{FAMILY, RunFn};
 use super::observe::{BeamObs, balance};
 use super::reference::BeamReference;
 use crate::case::{Case, CaseError, Scene};
@@ -82,7 +82,7 @@ impl BeamProblem {
         stepping: Stepping,
         observe: &Observe,
     ) -> Result<RunOutput<BeamObs>, String> {
-        (table()[v.index].1)(setup, stepping, observe)
+        (v.run_fn::<RunFn>()?)(setup, stepping, observe)
     }
 
     /// The scores and series of a run: the whole-run measures (`run_measures`), the time

@@ -17,7 +17,7 @@ pub static FAMILY: Family = Family {
     },
     metrics: METRICS,
     columns: COLUMNS,
-    variants,
+    variants: crate::problem::Variants::Table(variants),
     static_na_reason: registry::static_na_reason,
     load: super::case::load,
     inputs: super::case::inputs,
@@ -80,22 +80,35 @@ pub const COLUMNS: &[Column] = &[
     },
 ];
 
-/// The registered variants, in the order of `registry::variants()` (`index` into it).
+/// The registered variants, in the order of `registry::variants()` (`index` into it), each
+/// carrying its registry entry as its run.
 fn variants() -> &'static [Variant] {
     static TABLE: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
-    TABLE.get_or_init(|| {
-        registry::variants()
-            .iter()
-            .enumerate()
-            .map(|(index, v)| Variant {
-                param: v.param,
-                integrator: v.integrator,
-                formulation: v.formulation,
-                info: v.info,
-                index,
-            })
-            .collect()
-    })
+    TABLE.get_or_init(|| seam_variants(registry::variants().iter().cloned()))
+}
+
+/// The registry's variants as the seam's, numbered from 0.
+fn seam_variants(vs: impl Iterator<Item = registry::Variant>) -> Vec<Variant> {
+    vs.enumerate()
+        .map(|(index, v)| Variant {
+            param: v.param,
+            integrator: v.integrator,
+            formulation: v.formulation,
+            info: v.info,
+            index,
+            runner: crate::problem::Runner::new(v),
+        })
+        .collect()
+}
+
+/// Method `m` (listed as `name`) on every chart and formulation where it applies: the
+/// variants a catalogue adds for a method registered from outside the crate.
+pub fn ode_variants<M: crate::methods::OdeMethod>(
+    name: &'static str,
+    at: crate::methods::Where,
+    m: M,
+) -> Vec<Variant> {
+    seam_variants(registry::instantiate(name, at, m).into_iter())
 }
 
 /// A rigid-body run's costs, measured on the catalogue's quick tier (this machine, one job):

@@ -57,9 +57,9 @@ impl RigidProblem {
     }
 }
 
-/// The registry's variant behind a family variant.
-fn registered(v: &Variant) -> &'static registry::Variant {
-    &registry::variants()[v.index]
+/// The registry's variant behind a family variant (its chart's facts and its run).
+fn registered(v: &Variant) -> Result<&registry::Variant, String> {
+    v.run_fn::<registry::Variant>()
 }
 
 fn value(s: Stepping) -> f64 {
@@ -72,6 +72,9 @@ fn value(s: Stepping) -> f64 {
 impl Problem for RigidProblem {
     fn header(&self) -> &SceneHeader {
         &self.plan.header
+    }
+    fn header_mut(&mut self) -> &mut SceneHeader {
+        &mut self.plan.header
     }
     fn grid(&self) -> &Grid {
         &self.plan.setup.grid
@@ -92,7 +95,10 @@ impl Problem for RigidProblem {
         l.for_method(info)
     }
     fn na_reason(&self, v: &Variant) -> Option<String> {
-        registry::scene_na_reason(registered(v), &self.plan.setup.body)
+        match registered(v) {
+            Ok(rv) => registry::scene_na_reason(rv, &self.plan.setup.body),
+            Err(e) => Some(e),
+        }
     }
     fn attach_reference(&mut self, root: &Path) -> Result<(), String> {
         self.reference = Some(self.load_reference(root)?);
@@ -107,7 +113,7 @@ impl Problem for RigidProblem {
             .map(|l| reference::claim_for(&l.reference, metric))
     }
     fn run(&self, v: &Variant, stepping: Stepping, want: Want) -> Result<Outcome, String> {
-        let rv = registered(v);
+        let rv = registered(v)?;
         let setup = match want {
             Want::Timing => &self.timing,
             Want::Scored | Want::Trajectory => &self.plan.setup,

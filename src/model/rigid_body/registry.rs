@@ -225,6 +225,15 @@ impl Visit for EveryChart {
     }
 }
 
+/// The variants of one method on every chart, in both formulations, where it applies
+/// (chart-major): how a method registered from outside the crate reaches the rigid body
+/// (`catalogue::Catalogue::with_method`, through `family::ode_variants`).
+pub fn instantiate<M: OdeMethod>(name: &'static str, at: Where, m: M) -> Vec<Variant> {
+    let mut every = EveryChart(vec![]);
+    every.method(name, at, m);
+    every.0.into_iter().map(|(_, v)| v).collect()
+}
+
 /// The rigid body's own methods, each written for SO(3) x R^3 in the body formulation (or,
 /// compensated, on the long-horizon study's charts).
 fn own_methods(v: &mut Vec<Variant>) {

@@ -67,7 +67,7 @@ pub static FAMILY: Family = Family {
             unit: "J",
         },
     ],
-    variants,
+    variants: crate::problem::Variants::Table(variants),
     static_na_reason: |_, _, _| "not registered".into(),
     load: super::case::load,
     inputs: super::case::inputs,
@@ -113,8 +113,8 @@ fn dopri5<C: Coordinates>(
 }
 
 /// The family's table: the variant and its run function.
-pub fn table() -> &'static [(Variant, RunFn)] {
-    static TABLE: std::sync::OnceLock<Vec<(Variant, RunFn)>> = std::sync::OnceLock::new();
+pub fn table() -> &'static [Variant] {
+    static TABLE: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
     TABLE.get_or_init(|| {
         let rk4 = FixedStep::<ChainSystem<Nodal>>::info(&ExplicitRk::rk4());
         let verlet = FixedStep::<ChainSystem<Nodal>>::info(&StormerVerlet::new());
@@ -140,8 +140,7 @@ pub fn table() -> &'static [(Variant, RunFn)] {
 }
 
 fn variants() -> &'static [Variant] {
-    static V: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
-    V.get_or_init(|| table().iter().map(|(v, _)| *v).collect())
+    table()
 }
 
 /// A chain run's costs: three masses, an evaluation of a few dozen flops (counted as 100

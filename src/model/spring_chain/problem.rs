@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 use super::case::{ChainCase, ChainScene};
-use super::family::{FAMILY, table};
+use super::family::{FAMILY, RunFn};
 use super::{Chain, ChainObs};
 use crate::case::{Case, CaseError, Scene};
 use crate::integrate::Limits;
@@ -138,7 +138,7 @@ impl ChainProblem {
         stepping: Stepping,
         observe: &Observe,
     ) -> Result<RunOutput<ChainObs>, String> {
-        (table()[v.index].1)(&self.setup, stepping, observe)
+        (v.run_fn::<RunFn>()?)(&self.setup, stepping, observe)
     }
 }
 
