@@ -225,17 +225,6 @@ fn gather<'a>(variants: impl Iterator<Item = &'a Variant>) -> (Methods, Vec<Stri
     (table, conflicts)
 }
 
-/// The facts of an integrator by name: those of its first registered variant in the family
-/// table (its kind and twin do not depend on the chart it runs on); None for a name no family
-/// registers.
-pub fn integrator_info(integrator: &str) -> Option<crate::integrate::MethodInfo> {
-    FAMILIES
-        .iter()
-        .flat_map(|f| (f.variants)().iter())
-        .find(|v| v.integrator == integrator)
-        .map(|v| v.info)
-}
-
 /// The `model` keys of the families, in table order: the list a summary carries
 /// (`Summary::families`).
 pub fn family_models() -> Vec<String> {
