@@ -14,9 +14,9 @@
 //! symplectic on a vector space, not as Runge-Kutta-Munthe-Kaas methods on a group). For each
 //! the table holds whether it holds on any of the method's registrations and, in
 //! `<fact>_params`, on which parameterizations; `Methods::check` refuses a table where the two
-//! disagree. Where it fails:
-//! names are only checked for control characters, not against a catalogue (a summary may come
-//! from another build's catalogue; that is the point of the table).
+//! disagree. Where it fails: names are only checked for control characters, not against a
+//! catalogue (a summary may come from another build's catalogue; that is the point of the
+//! table), and a fact that a method states wrongly is carried as stated.
 //!
 //! # Example
 //!
