@@ -177,13 +177,20 @@ fn impossible_summaries_exit_2() {
             }),
         ),
     ];
+    refused_edits(&good, edits, &["gate", "report"], "bad-summary-case");
+}
+
+/// Each edit of `good`, written as a summary of its own (without a manifest), makes every
+/// command of `cmds` exit 2 naming `summary.json` and saying the edit's text; `report`
+/// writes nothing.
+fn refused_edits(good: &serde_json::Value, edits: Vec<(&str, Edit)>, cmds: &[&str], tag: &str) {
     for (says, edit) in edits {
-        let case = common::temp_dir("bad-summary-case");
+        let case = common::temp_dir(tag);
         let mut s = good.clone();
         edit(&mut s);
         let f = case.join("summary.json");
         std::fs::write(&f, serde_json::to_string_pretty(&s).unwrap()).unwrap();
-        for cmd in ["gate", "report"] {
+        for cmd in cmds {
             let o = bin().args([cmd, "--summary"]).arg(&f).output().unwrap();
             let err = String::from_utf8_lossy(&o.stderr);
             assert_eq!(o.status.code(), Some(2), "{cmd} {says}: {err}");
@@ -242,23 +249,12 @@ fn malformed_methods_tables_exit_2() {
             Box::new(|s: &mut serde_json::Value| s["families"][1] = "rigid_body".into()),
         ),
     ];
-    for (says, edit) in edits {
-        let case = common::temp_dir("bad-methods-case");
-        let mut s = good.clone();
-        edit(&mut s);
-        let f = case.join("summary.json");
-        std::fs::write(&f, serde_json::to_string_pretty(&s).unwrap()).unwrap();
-        for cmd in ["gate", "report", "advise"] {
-            let o = bin().args([cmd, "--summary"]).arg(&f).output().unwrap();
-            let err = String::from_utf8_lossy(&o.stderr);
-            assert_eq!(o.status.code(), Some(2), "{cmd} {says}: {err}");
-            assert!(
-                err.contains("summary.json") && err.contains(says),
-                "{cmd}: {err}"
-            );
-        }
-        assert!(!case.join("index.html").exists() && !case.join("summary.md").exists());
-    }
+    refused_edits(
+        &good,
+        edits,
+        &["gate", "report", "advise"],
+        "bad-methods-case",
+    );
     let case = common::temp_dir("old-methods-case");
     let mut old = good.clone();
     let obj = old.as_object_mut().unwrap();
