@@ -1,11 +1,15 @@
 //! `summary.json` (docs/schemas.md, "summary.json"; its fields are a contract): one record per run
 //! with its metrics, work counters and timing, the order fits, and the environment that produced
 //! them; plus the per-run series files. Written atomically. Also the build/environment facts
-//! (`Env`) and a UTC timestamp without a date library.
+//! (`Env`) and a UTC timestamp without a date library. The facts of the methods a run was made
+//! with travel in the summary (`methods`, the table of `methods.rs`), beside the families'
+//! `model` keys, so that readers need no table of their own (older summaries have neither).
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 use crate::integrate::{Failure, Stats};
+
+pub mod methods;
 
 /// A run's status.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -230,6 +234,15 @@ pub struct Summary {
     /// before it (readers then take every case of the tier the ladder points show).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub selection: Option<crate::selection::Selection>,
+    /// The facts of every method registered in the catalogue the run was made with, by
+    /// integrator name (`catalogue::methods`); absent in summaries written before it
+    /// (readers then take the compiled-in catalogue's, `catalogue::methods_of`).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub methods: Option<methods::Methods>,
+    /// The `model` keys of the catalogue's families, in table order; absent in summaries
+    /// written before it.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub families: Option<Vec<String>>,
 }
 
 impl Summary {
@@ -289,11 +302,12 @@ impl Summary {
         obj.remove("fits");
         let mut out = String::from("{\n");
         for (k, v) in obj.iter() {
-            out.push_str(&format!(
-                "  {}: {},\n",
-                serde_json::to_string(k)?,
-                serde_json::to_string(v)?
-            ));
+            // The methods table one method a line, like the records.
+            let value = match &self.methods {
+                Some(m) if k == "methods" => m.to_json_lines(2)?,
+                _ => serde_json::to_string(v)?,
+            };
+            out.push_str(&format!("  {}: {value},\n", serde_json::to_string(k)?));
         }
         let list = |name: &str, items: Vec<String>, last: bool, out: &mut String| {
             out.push_str(&format!("  \"{name}\": ["));
@@ -323,8 +337,9 @@ impl Summary {
     /// What the schema cannot check, for a summary read from a file: every run appears once
     /// (its run key and ladder point), its names hold no control character, a `failed` record
     /// carries its failure and an `ok` or `n/a` one none, and no error or drift metric (a name
-    /// containing `error` or `drift`) is negative. The message names the record by its index
-    /// and key.
+    /// containing `error` or `drift`) is negative; and the `methods` table and `families`
+    /// list hold together (`methods::check_summary`). The message names the record by its index and
+    /// key.
     pub fn check(&self) -> Result<(), String> {
         if let Some(sel) = &self.selection {
             sel.check()?;
@@ -391,7 +406,8 @@ impl Summary {
                 }
             }
         }
-        Ok(())
+        // After the names' check: its messages print names.
+        methods::check_summary(self)
     }
 }
 
@@ -633,6 +649,8 @@ mod tests {
             selection: Some(crate::selection::Selection::everything(
                 crate::selection::Tier::Quick,
             )),
+            methods: None,
+            families: None,
         };
         let back: Summary = serde_json::from_str(&s.to_json_lines().unwrap()).unwrap();
         assert_eq!(back, s);
@@ -642,6 +660,12 @@ mod tests {
         r.series_reason = Some("not written".into());
         s.records = vec![r.clone(), r];
         s.records[1].dt = Some(0.01);
+        let mut table = methods::Methods::default();
+        let rk4 =
+            crate::integrate::MethodInfo::new("rk4", crate::integrate::MethodKind::Explicit, 4);
+        table.insert("rk4", methods::MethodFacts::of(&rk4, "quat"));
+        s.methods = Some(table);
+        s.families = Some(vec!["rigid_body".into()]);
         let text = s.to_json_lines().unwrap();
         let back: Summary = serde_json::from_str(&text).unwrap();
         assert_eq!(back, s);
@@ -650,6 +674,10 @@ mod tests {
                 .filter(|l| l.contains("\"case\":\"a\""))
                 .count(),
             2
+        );
+        assert!(
+            text.contains("\n    \"rk4\": {\"kind\":\"explicit\""),
+            "{text}"
         );
         assert_eq!(round_sig(1.0 / 3.0, 6), 0.333333);
         assert_eq!(round_sig(0.7000000000000001, 6), 0.7);

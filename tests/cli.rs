@@ -379,6 +379,8 @@ fn report_with_corrupt_stability_json_warns_and_goes_on() {
         records: vec![],
         fits: vec![],
         selection: None,
+        methods: None,
+        families: None,
     };
     let path = d.join("summary.json");
     std::fs::write(&path, serde_json::to_string(&summary).unwrap()).unwrap();

@@ -1,7 +1,8 @@
 //! Bounded behaviour on hostile input and faults, through the command line: a closed
 //! stdout (EPIPE) never panics and never changes the exit status or the files written; HTML in
 //! a case or scene name is inert in `summary.md` as in `index.html`; summaries with duplicate
-//! runs, impossible statuses or negative errors are unusable input naming the record.
+//! runs, impossible statuses or negative errors are unusable input naming the record, and so
+//! are a malformed `methods` table or `families` list, naming the key.
 mod common;
 
 use std::path::Path;
@@ -176,13 +177,20 @@ fn impossible_summaries_exit_2() {
             }),
         ),
     ];
+    refused_edits(&good, edits, &["gate", "report"], "bad-summary-case");
+}
+
+/// Each edit of `good`, written as a summary of its own (without a manifest), makes every
+/// command of `cmds` exit 2 naming `summary.json` and saying the edit's text; `report`
+/// writes nothing.
+fn refused_edits(good: &serde_json::Value, edits: Vec<(&str, Edit)>, cmds: &[&str], tag: &str) {
     for (says, edit) in edits {
-        let case = common::temp_dir("bad-summary-case");
+        let case = common::temp_dir(tag);
         let mut s = good.clone();
         edit(&mut s);
         let f = case.join("summary.json");
         std::fs::write(&f, serde_json::to_string_pretty(&s).unwrap()).unwrap();
-        for cmd in ["gate", "report"] {
+        for cmd in cmds {
             let o = bin().args([cmd, "--summary"]).arg(&f).output().unwrap();
             let err = String::from_utf8_lossy(&o.stderr);
             assert_eq!(o.status.code(), Some(2), "{cmd} {says}: {err}");
@@ -192,6 +200,72 @@ fn impossible_summaries_exit_2() {
             );
         }
         assert!(!case.join("index.html").exists() && !case.join("summary.md").exists());
+    }
+}
+
+/// A summary whose `methods` table is malformed (an unknown kind, a missing fact, a fact of
+/// the wrong type, a twin of no entry), lacks the integrator of one of its records, or whose
+/// `families` list repeats a family is unusable input: `gate`, `report` and `advise` exit 2
+/// naming the file and the key. The same summary without the table and the list (as written
+/// before they existed, like the committed baseline) is read as before.
+#[test]
+fn malformed_methods_tables_exit_2() {
+    let dir = common::temp_dir("bad-methods");
+    small_run(&dir);
+    let good: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(good["methods"]["rk4"]["kind"], "explicit");
+    assert_eq!(good["methods"]["gauss6_kahan"]["twin_of"], "gauss6");
+    assert_eq!(good["families"][0], "rigid_body");
+    let edits: Vec<(&str, Edit)> = vec![
+        (
+            "key `methods.rk4.kind` is \"magic\", expected one of `explicit`",
+            Box::new(|s: &mut serde_json::Value| s["methods"]["rk4"]["kind"] = "magic".into()),
+        ),
+        (
+            "key `methods.rk4.order` is missing",
+            Box::new(|s: &mut serde_json::Value| {
+                s["methods"]["rk4"].as_object_mut().unwrap().remove("order");
+            }),
+        ),
+        (
+            "key `methods.rk4.implicit` is \"no\", expected true or false",
+            Box::new(|s: &mut serde_json::Value| s["methods"]["rk4"]["implicit"] = "no".into()),
+        ),
+        (
+            "key `methods.gauss6_kahan.twin_of` is \"gauss7\", which has no entry",
+            Box::new(|s: &mut serde_json::Value| {
+                s["methods"]["gauss6_kahan"]["twin_of"] = "gauss7".into();
+            }),
+        ),
+        (
+            "key `integrator` is \"rk4\", which has no entry in `methods`",
+            Box::new(|s: &mut serde_json::Value| {
+                s["methods"].as_object_mut().unwrap().remove("rk4");
+            }),
+        ),
+        (
+            "key `families[1]`: `rigid_body` appears twice",
+            Box::new(|s: &mut serde_json::Value| s["families"][1] = "rigid_body".into()),
+        ),
+    ];
+    refused_edits(
+        &good,
+        edits,
+        &["gate", "report", "advise"],
+        "bad-methods-case",
+    );
+    let case = common::temp_dir("old-methods-case");
+    let mut old = good.clone();
+    let obj = old.as_object_mut().unwrap();
+    obj.remove("methods");
+    obj.remove("families");
+    let f = case.join("summary.json");
+    std::fs::write(&f, serde_json::to_string_pretty(&old).unwrap()).unwrap();
+    for cmd in ["report", "advise"] {
+        let o = bin().args([cmd, "--summary"]).arg(&f).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{cmd} without a table: {err}");
     }
 }
 

@@ -64,6 +64,8 @@
 //!     records: vec![],
 //!     fits: vec![],
 //!     selection: None,
+//!     methods: None,
+//!     families: None,
 //! };
 //! let a = advise::advise(&summary, &advise::specs(&cases, &|_, _| Default::default()), &Options::default());
 //! assert!(a.cases.is_empty()); // nothing was run

@@ -151,6 +151,8 @@ mod tests {
             ],
             fits: vec![],
             selection: None,
+            methods: None,
+            families: None,
         };
         let r = robustness("c", &s);
         let names: Vec<&str> = r.iter().map(|x| x.integrator.as_str()).collect();
@@ -175,6 +177,8 @@ mod tests {
             records: vec![seam, search("rk4", Some(0.19), Some(0.023))],
             fits: vec![],
             selection: None,
+            methods: None,
+            families: None,
         };
         let r = robustness("c", &s);
         let seam = r.iter().find(|x| x.integrator == "newmark").unwrap();

@@ -57,6 +57,8 @@ fn summary(records: Vec<Record>) -> Summary {
         records,
         fits: vec![],
         selection: None,
+        methods: None,
+        families: None,
     }
 }
 

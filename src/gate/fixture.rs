@@ -129,6 +129,8 @@ pub fn summary(records: Vec<Record>) -> Summary {
         records,
         fits: vec![],
         selection: None,
+        methods: Some(crate::catalogue::methods()),
+        families: Some(crate::catalogue::family_models()),
     }
 }
 

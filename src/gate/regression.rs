@@ -588,8 +588,9 @@ mod tests {
         );
     }
 
-    /// `--update-baseline` writes the summary as the baseline; `evaluate` with `--baseline`
-    /// then passes, catches a later regression, and an unreadable baseline is bad input.
+    /// `--update-baseline` writes the summary as the baseline (its `methods` table and
+    /// `families` list with it); `evaluate` with `--baseline` then passes, catches a later
+    /// regression, and an unreadable baseline is bad input.
     #[test]
     fn update_then_compare_through_evaluate() {
         let dir = fixture::scratch("baseline");
@@ -600,6 +601,7 @@ mod tests {
         let baseline = dir.join("baseline").join("quick.json");
         update_baseline(&summary_path, &baseline).unwrap();
         assert_eq!(load_baseline(&baseline).unwrap(), s);
+        assert!(s.methods.is_some() && s.families.is_some());
         let o = GateOptions {
             baseline: Some(baseline.clone()),
             ..opts(true)

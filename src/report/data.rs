@@ -6,13 +6,16 @@
 //! names no family has sort after, alphabetically); scenes in the case file's order
 //! (unknown scenes after, alphabetically); cases in the order of the `cases` slice, then cases
 //! absent from it. A variant's runs are either all fixed-step (`dt`) or all adaptive (`tol`).
+//! A variant's method facts (kind, twin) are the summary's (`catalogue::methods_of`).
 //! A missing or unreadable series file is `None`, never an error: the plots say "no data".
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use crate::case::Case;
 use crate::catalogue::axis_position;
+use crate::integrate::MethodKind;
 use crate::problem::{Axis, Family};
+use crate::summary::methods::Methods;
 use crate::summary::{FitRecord, Record, RunKey, Series, Status, Summary, run_id};
 
 /// A variant: parameterization x integrator x formulation.
@@ -187,6 +190,10 @@ pub struct VariantRuns<'a> {
     pub runs: Vec<&'a Record>,
     /// Adaptive (`tol`) rather than fixed-step (`dt`).
     pub adaptive: bool,
+    /// The method's kind, by the summary's facts (`catalogue::methods_of`).
+    pub kind: MethodKind,
+    /// Whether the method is, by the summary's facts, a long-horizon twin of another.
+    pub twin: bool,
     /// The order fit on the primary metric, if the summary has one.
     pub fit: Option<&'a FitRecord>,
 }
@@ -318,6 +325,7 @@ pub fn case_views<'a>(summary: &'a Summary, cases: &'a [Case]) -> Vec<CaseView<'
             .or_default()
             .push(r);
     }
+    let methods = crate::catalogue::methods_of(summary);
     let mut fits: BTreeMap<(&str, &str, VariantKey), &'a FitRecord> = BTreeMap::new();
     for f in &summary.fits {
         fits.insert((&f.key.case, &f.key.scene, VariantKey::of(&f.key)), f);
@@ -353,7 +361,7 @@ pub fn case_views<'a>(summary: &'a Summary, cases: &'a [Case]) -> Vec<CaseView<'
             }
             let scenes = scene_names
                 .into_iter()
-                .map(|scene| scene_view(name, scene, &scenes_map[scene], &fits))
+                .map(|scene| scene_view(name, scene, &scenes_map[scene], &fits, &methods))
                 .collect();
             let family =
                 crate::catalogue::family_of_case(case, scenes_map.values().flatten().copied());
@@ -385,6 +393,7 @@ fn scene_view<'a>(
     scene: &str,
     records: &[&'a Record],
     fits: &BTreeMap<(&str, &str, VariantKey), &'a FitRecord>,
+    methods: &Methods,
 ) -> SceneView<'a> {
     let mut na = vec![];
     let mut groups: BTreeMap<VariantKey, Vec<&'a Record>> = BTreeMap::new();
@@ -405,10 +414,14 @@ fn scene_view<'a>(
             });
             let adaptive = runs.iter().all(|r| r.dt.is_none() && r.tol.is_some());
             let fit = fits.get(&(case, scene, key.clone())).copied();
+            let kind = super::select::kind_of(methods, &key.integrator);
+            let twin = super::select::is_twin(methods, &key.integrator);
             VariantRuns {
                 key,
                 runs,
                 adaptive,
+                kind,
+                twin,
                 fit,
             }
         })

@@ -238,6 +238,8 @@ pub fn summary_from(
         records,
         fits,
         selection: None,
+        methods: None,
+        families: None,
     }
 }
 

@@ -7,12 +7,16 @@
 //! Invariants: the panels of a selection partition the variants it admits (each admitted
 //! variant is in exactly one panel); a twin that differs from another method only in its
 //! summation (`MethodInfo::twin_of`, the Kahan-compensated methods) is admitted by no
-//! selection, as the plots here are the short-horizon ones. A family whose declared split
-//! leaves more than `MAX_LINES` variants in a panel fails the unit test below, not the report.
+//! selection, as the plots here are the short-horizon ones. A method's kind and twin are the
+//! summary's facts (`Summary::methods`, carried by each `VariantRuns`; the compiled-in
+//! catalogue's for a summary written before the table existed), never looked up by name in
+//! this build's table. A family whose declared split leaves more than `MAX_LINES` variants in
+//! a panel fails the unit test below, not the report.
 use super::data::VariantRuns;
 use crate::integrate::MethodKind;
 use crate::problem::Family;
 use crate::problem::figures::{ParamGroup, Split};
+use crate::summary::methods::Methods;
 
 pub use crate::problem::figures::{MAX_LINES, Selection};
 
@@ -22,21 +26,25 @@ pub trait Admits {
     fn admits(&self, v: &VariantRuns) -> bool;
 }
 
-/// Whether an integrator is a long-horizon twin of another (left out of every selection).
-pub fn is_twin(integrator: &str) -> bool {
-    crate::catalogue::integrator_info(integrator).is_some_and(|i| i.twin_of.is_some())
+/// Whether an integrator is, by the facts of `methods` (`catalogue::methods_of` a summary), a
+/// long-horizon twin of another (left out of every selection).
+pub fn is_twin(methods: &Methods, integrator: &str) -> bool {
+    methods.get(integrator).is_some_and(|f| f.twin_of.is_some())
 }
 
-/// The kind of an integrator (explicit for a name no family registers).
-pub fn kind_of(integrator: &str) -> MethodKind {
-    crate::catalogue::integrator_info(integrator).map_or(MethodKind::Explicit, |i| i.kind)
+/// The kind of an integrator by the facts of `methods` (explicit for a name it lacks: a
+/// summary whose table is present has every name, `Summary::check`).
+pub fn kind_of(methods: &Methods, integrator: &str) -> MethodKind {
+    methods
+        .get(integrator)
+        .map_or(MethodKind::Explicit, |f| f.kind)
 }
 
 impl Admits for Selection {
     fn admits(&self, v: &VariantRuns) -> bool {
         self.admit
             .admits(&v.key.param, &v.key.integrator, v.adaptive)
-            && !is_twin(&v.key.integrator)
+            && !v.twin
     }
 }
 
@@ -66,7 +74,7 @@ pub struct Panel {
 
 impl Admits for Panel {
     fn admits(&self, v: &VariantRuns) -> bool {
-        self.sel.admits(v) && self.admits_key(&v.key.param, &v.key.integrator, &v.key.formulation)
+        self.sel.admits(v) && self.admits_key(&v.key.param, v.kind, &v.key.formulation)
     }
 }
 
@@ -113,9 +121,10 @@ impl Panel {
         }
     }
 
-    /// Whether the panel's own filter (kind, parameterizations, formulation) passes.
-    pub fn admits_key(&self, param: &str, integrator: &str, formulation: &str) -> bool {
-        self.kind.is_none_or(|k| kind_of(integrator) == k)
+    /// Whether the panel's own filter (the method's kind, parameterizations, formulation)
+    /// passes.
+    pub fn admits_key(&self, param: &str, kind: MethodKind, formulation: &str) -> bool {
+        self.kind.is_none_or(|k| kind == k)
             && self.formulation.is_none_or(|f| f == formulation)
             && match self.params {
                 Params::Any => true,
@@ -183,9 +192,10 @@ pub fn panels(sel: Selection, family: &Family) -> Vec<Panel> {
 /// A plot cut into plots of at most `MAX_LINES` lines, for plots whose lines are not chosen
 /// by a selection (the stability study's, whose variants depend on the run's filter): unchanged
 /// when it is small enough; else one plot per integrator kind, and a kind with more lines in
-/// consecutive parts of at most `MAX_LINES`. Ids and titles name the part; each failure mark
-/// goes with its variant's line (to the kind's first part when the variant has no line).
-pub fn split_crowded(p: super::chart::Plot) -> Vec<super::chart::Plot> {
+/// consecutive parts of at most `MAX_LINES`, the kinds by the facts of `methods` (the
+/// summary's). Ids and titles name the part; each failure mark goes with its variant's line
+/// (to the kind's first part when the variant has no line).
+pub fn split_crowded(methods: &Methods, p: super::chart::Plot) -> Vec<super::chart::Plot> {
     if p.lines.len() <= MAX_LINES {
         return vec![p];
     }
@@ -194,13 +204,13 @@ pub fn split_crowded(p: super::chart::Plot) -> Vec<super::chart::Plot> {
         let lines: Vec<_> = p
             .lines
             .iter()
-            .filter(|l| kind_of(&l.key.integrator) == kind)
+            .filter(|l| kind_of(methods, &l.key.integrator) == kind)
             .cloned()
             .collect();
         let fails: Vec<_> = p
             .fails
             .iter()
-            .filter(|f| kind_of(&f.key.integrator) == kind)
+            .filter(|f| kind_of(methods, &f.key.integrator) == kind)
             .collect();
         if lines.is_empty() && fails.is_empty() {
             continue;
@@ -270,10 +280,10 @@ mod tests {
                 let ps = panels(sel, family);
                 for v in registered(family) {
                     let admitted = sel.admit.admits(v.param, v.integrator, v.info.adaptive)
-                        && !is_twin(v.integrator);
+                        && v.info.twin_of.is_none();
                     let n = ps
                         .iter()
-                        .filter(|p| p.admits_key(v.param, v.integrator, v.formulation))
+                        .filter(|p| p.admits_key(v.param, v.info.kind, v.formulation))
                         .count();
                     if admitted {
                         assert_eq!(n, 1, "{} in {}: {n} panels", v.integrator, sel.id);
@@ -283,8 +293,8 @@ mod tests {
                     let lines = registered(family)
                         .filter(|v| {
                             sel.admit.admits(v.param, v.integrator, v.info.adaptive)
-                                && !is_twin(v.integrator)
-                                && p.admits_key(v.param, v.integrator, v.formulation)
+                                && v.info.twin_of.is_none()
+                                && p.admits_key(v.param, v.info.kind, v.formulation)
                         })
                         .count();
                     assert!(
@@ -333,7 +343,8 @@ mod tests {
         };
         let total = p.lines.len();
         assert!(total > MAX_LINES);
-        let parts = split_crowded(p.clone());
+        let methods = crate::catalogue::methods();
+        let parts = split_crowded(&methods, p.clone());
         assert!(parts.iter().all(|q| q.lines.len() <= MAX_LINES));
         assert_eq!(parts.iter().map(|q| q.lines.len()).sum::<usize>(), total);
         let mut ids: Vec<&str> = parts.iter().map(|q| q.id.as_str()).collect();
@@ -343,15 +354,77 @@ mod tests {
             lines: p.lines[..3].to_vec(),
             ..p
         };
-        assert_eq!(split_crowded(small.clone())[0].id, small.id);
+        assert_eq!(split_crowded(&methods, small.clone())[0].id, small.id);
     }
 
     /// The Kahan twins are left out and the kinds come from the integrators' facts.
     #[test]
     fn twins_and_kinds() {
-        assert!(is_twin("gauss6_kahan") && is_twin("simo_wong_kahan") && !is_twin("gauss6"));
-        assert_eq!(kind_of("rk4"), MethodKind::Explicit);
-        assert_eq!(kind_of("gauss6"), MethodKind::Implicit);
-        assert_eq!(kind_of("lgvi"), MethodKind::Geometric);
+        let m = crate::catalogue::methods();
+        assert!(is_twin(&m, "gauss6_kahan") && is_twin(&m, "simo_wong_kahan"));
+        assert!(!is_twin(&m, "gauss6"));
+        assert_eq!(kind_of(&m, "rk4"), MethodKind::Explicit);
+        assert_eq!(kind_of(&m, "gauss6"), MethodKind::Implicit);
+        assert_eq!(kind_of(&m, "lgvi"), MethodKind::Geometric);
+    }
+
+    /// The report takes a method's kind and twin from the summary's `methods` table, not from
+    /// this build's catalogue: an integrator no family registers, stated `implicit` there, is
+    /// drawn in the implicit methods' panel of a kind-split selection, its stated twin in
+    /// none; and a built-in name restated `geometric` there is drawn as geometric.
+    #[test]
+    fn the_summary_table_decides_kind_and_twin() {
+        use crate::integrate::MethodInfo;
+        use crate::summary::methods::MethodFacts;
+        use crate::summary::{Record, RunKey, Status};
+        let mut table = crate::catalogue::methods();
+        let mine = MethodInfo::new("my_method", MethodKind::Implicit, 3).with_implicit(true);
+        table.insert("my_method", MethodFacts::of(&mine, "so3"));
+        table.insert(
+            "my_method_kahan",
+            MethodFacts::of(&mine.with_twin_of("my_method"), "so3"),
+        );
+        let mut rk4 = table.get("rk4").unwrap().clone();
+        rk4.kind = MethodKind::Geometric;
+        table.insert("rk4", rk4);
+        let run = |integrator: &str| {
+            let mut r = Record::new(RunKey::new("c", "s", "so3", integrator, "body"), "h");
+            r.dt = Some(0.01);
+            r.status = Status::Ok;
+            r
+        };
+        let records = ["my_method", "my_method_kahan", "rk4"].map(run).to_vec();
+        let mut summary = super::super::fixture::summary_from("c", "t", records, vec![]);
+        summary.methods = Some(table);
+        assert!(summary.check().is_ok());
+        let views = super::super::data::case_views(&summary, &[]);
+        let vs = &views[0].scenes[0].variants;
+        let family = crate::catalogue::find_family("rigid_body").unwrap();
+        let sel = Selection {
+            id: "all",
+            short: "all",
+            describe: "All.",
+            admit: crate::problem::figures::Admit::All,
+            legend_axes: &[],
+            split: Split::Kind,
+        };
+        let ps = panels(sel, family);
+        let panel_of = |name: &str| {
+            let v = vs.iter().find(|v| v.key.integrator == name).unwrap();
+            ps.iter()
+                .filter(|p| p.admits(v))
+                .map(|p| p.id.clone())
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(panel_of("my_method"), ["all_implicit"]);
+        assert!(panel_of("my_method_kahan").is_empty());
+        assert_eq!(panel_of("rk4"), ["all_geometric"]);
+        // Without the table (a summary written before it), the catalogue's facts: rk4 is
+        // explicit, and the unknown name falls back to explicit.
+        summary.methods = None;
+        let views = super::super::data::case_views(&summary, &[]);
+        let vs = &views[0].scenes[0].variants;
+        let rk4 = vs.iter().find(|v| v.key.integrator == "rk4").unwrap();
+        assert_eq!(rk4.kind, MethodKind::Explicit);
     }
 }

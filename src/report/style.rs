@@ -224,7 +224,8 @@ mod tests {
     fn panel_pairs() -> Vec<(&'static str, &'static str)> {
         use crate::catalogue::FAMILIES;
         use crate::problem::matrix::registered;
-        use crate::report::select::{is_twin, kind_of, panels};
+        use crate::report::select::{kind_of, panels};
+        let methods = crate::catalogue::methods();
         let mut sets: Vec<Vec<&'static str>> = vec![];
         for family in FAMILIES {
             for &sel in family.figures.selections() {
@@ -232,8 +233,8 @@ mod tests {
                     let mut set: Vec<&'static str> = registered(family)
                         .filter(|v| {
                             sel.admit.admits(v.param, v.integrator, v.info.adaptive)
-                                && !is_twin(v.integrator)
-                                && p.admits_key(v.param, v.integrator, v.formulation)
+                                && v.info.twin_of.is_none()
+                                && p.admits_key(v.param, v.info.kind, v.formulation)
                         })
                         .map(|v| v.integrator)
                         .collect();
@@ -247,7 +248,7 @@ mod tests {
                 axis_names(Axis::Integrator)
                     .iter()
                     .copied()
-                    .filter(|i| kind_of(i) == kind)
+                    .filter(|i| kind_of(&methods, i) == kind)
                     .collect(),
             );
         }

@@ -106,6 +106,8 @@ fn write_study(
         records,
         fits: all.fits,
         selection: Some(selection),
+        methods: Some(crate::catalogue::methods()),
+        families: Some(crate::catalogue::family_models()),
     };
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     staging.write("stability.json", text.as_bytes())?;

@@ -199,6 +199,11 @@ pub fn run_catalogue(
         selection = keep_base_runs(base, &mut staging, &mut records, &mut fits, selection, opts)?;
     }
     records.sort_by_key(crate::catalogue::report_order);
+    // The facts of the methods this build registers, and those of a merged run's kept records.
+    let mut methods = crate::catalogue::methods();
+    if let Some(kept) = opts.base.as_ref().and_then(|b| b.methods.as_ref()) {
+        methods.extend_missing(kept);
+    }
     let mut env = Env::current(opts.jobs, Some(opts.timing_mode()));
     env.elapsed_s = Some(started.elapsed().as_secs_f64());
     env.families = (!families.is_empty()).then_some(families);
@@ -210,6 +215,8 @@ pub fn run_catalogue(
         records,
         fits,
         selection: Some(selection),
+        methods: Some(methods),
+        families: Some(crate::catalogue::family_models()),
     };
     commit_summary(&summary, staging, opts)?;
     Ok(summary)

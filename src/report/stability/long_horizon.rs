@@ -1,7 +1,8 @@
 //! The long-horizon part: energy and momentum error against t (log-log, from the series
 //! files beside stability.json) with the growth exponent in the legend, one panel per
 //! integrator kind (`integrate::MethodKind`; each method beside its Kahan-compensated twin, at
-//! most eight lines), and a table of exponents and final errors.
+//! most eight lines; the kinds are the study's facts, its `methods` table), and a table of
+//! exponents and final errors.
 use super::*;
 use crate::integrate::MethodKind;
 use crate::report::select::kind_of;
@@ -49,6 +50,7 @@ pub(super) fn column(v: &serde_json::Value, name: &str) -> Option<Vec<f64>> {
 
 /// The long-horizon plots of one scene (energy, and momentum when any record has it).
 pub(super) fn long_plots(
+    methods: &Methods,
     case: &str,
     scene: &str,
     rs: &[&Record],
@@ -60,7 +62,7 @@ pub(super) fn long_plots(
     let mut out = vec![];
     let kinds: Vec<MethodKind> = MethodKind::ALL
         .into_iter()
-        .filter(|k| rs.iter().any(|r| kind_of(&r.key.integrator) == *k))
+        .filter(|k| rs.iter().any(|r| kind_of(methods, &r.key.integrator) == *k))
         .collect();
     for (momentum, kind) in [false, true]
         .into_iter()
@@ -79,7 +81,7 @@ pub(super) fn long_plots(
         let mut steps: BTreeSet<String> = BTreeSet::new();
         for (r, s) in loaded
             .iter()
-            .filter(|(r, _)| kind_of(&r.key.integrator) == kind)
+            .filter(|(r, _)| kind_of(methods, &r.key.integrator) == kind)
         {
             let key = VariantKey::of(&r.key);
             if (!momentum || r.metrics.contains_key(metric))

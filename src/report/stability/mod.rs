@@ -34,6 +34,7 @@ use super::tables::{Cell, Table, kind_name};
 use crate::case::Case;
 use crate::report::chart::{Line, Plot};
 use crate::report::data::{VariantKey, num, time};
+use crate::summary::methods::Methods;
 use crate::summary::{FitRecord, Record, Status, Summary};
 
 mod long_horizon;
@@ -337,8 +338,11 @@ pub fn section(
     } = case_records(s, name)?;
     let text = section_text(&search, &fits, &long, &other, case);
     let steps = step_tables(name, &search, case);
-    let ladder = split_figures(ladder_plots(name, &fits, &search, footer));
-    let (long_figs, long_sorted) = long_horizon_figures(name, &long, src.dir, footer, case);
+    // The kinds that split the plots are the study's facts (its `methods` table).
+    let methods = crate::catalogue::methods_of(s);
+    let split = |ps| split_figures(&methods, ps);
+    let ladder = split(ladder_plots(name, &fits, &search, footer));
+    let (long_figs, long_sorted) = long_horizon_figures(src, &methods, name, &long, footer, case);
     Some(StabilitySection {
         env_line: format!(
             "stability.json: commit {} | {} | {} | {} build, {} threads",
@@ -349,8 +353,8 @@ pub fn section(
         ladder,
         long_horizon: long_figs,
         long_table: (!long_sorted.is_empty()).then(|| long_table(name, &long_sorted)),
-        singularity: split_figures(singularity_plots(name, &other, footer)),
-        sensitivity: split_figures(
+        singularity: split(singularity_plots(name, &other, footer)),
+        sensitivity: split(
             sensitivity_plot(name, &other, src.dir, footer)
                 .into_iter()
                 .collect(),
@@ -528,18 +532,19 @@ fn step_tables(name: &str, search: &[&Record], case: Option<&Case>) -> Vec<StepT
 }
 
 /// The figures of plots whose lines follow the run's variants, cut to at most eight lines each.
-fn split_figures(ps: Vec<Plot>) -> Vec<Figure> {
+fn split_figures(methods: &Methods, ps: Vec<Plot>) -> Vec<Figure> {
     ps.into_iter()
-        .flat_map(super::select::split_crowded)
+        .flat_map(|p| super::select::split_crowded(methods, p))
         .map(|p| super::figure(&p))
         .collect()
 }
 
 /// The long-horizon figures, scene by scene, and the long-horizon records in variant order.
 fn long_horizon_figures<'a>(
+    src: Source,
+    methods: &Methods,
     name: &str,
     long: &[&'a Record],
-    dir: &Path,
     footer: &str,
     case: Option<&Case>,
 ) -> (Vec<Figure>, Vec<&'a Record>) {
@@ -553,7 +558,7 @@ fn long_horizon_figures<'a>(
             .filter(|r| r.key.scene == scene)
             .collect();
         long_figs.extend(
-            long_plots(name, &scene, &rs, dir, footer)
+            long_plots(methods, name, &scene, &rs, src.dir, footer)
                 .iter()
                 .map(super::figure),
         );
