@@ -9,7 +9,10 @@
 //!   [`family_of_variant`], [`family_of_case`], [`find_family`]);
 //! - the names of each record axis over every family and the report order they define
 //!   ([`axis_names`], [`axis_position`], [`variant_order`], [`Ordered`] for the summary's keys
-//!   and records), and the facts of an integrator by name ([`integrator_info`]);
+//!   and records);
+//! - the facts of every registered method, the table a summary carries ([`methods`]), and
+//!   the table a reader of a summary goes by ([`methods_of`]: the summary's, or the
+//!   compiled-in one for a summary written before the table existed);
 //! - a variant filter's names checked against every family ([`unknown_names`]).
 //!
 //! Layers (docs/architecture.md, `tests/layers.rs`): `catalogue` imports `model`, `problem`,
@@ -33,11 +36,14 @@ use std::path::Path;
 mod value;
 pub use value::{Catalogue, RegisterError};
 
+use std::borrow::Cow;
+use std::collections::BTreeMap;
+
 use crate::case::{self, Case, CaseError};
-use crate::integrate::MethodInfo;
-use crate::problem::{Axes, Axis, Family};
+use crate::problem::{Axes, Axis, Family, Variant};
 use crate::selection::VariantFilter;
-use crate::summary::{Record, RunKey};
+use crate::summary::methods::{MethodFacts, Methods};
+use crate::summary::{Record, RunKey, Summary};
 
 /// Loads one case from its text; `file_label` names it in errors (`cases/<name>.toml`). Every
 /// scene's estimate (`problem::Family::estimate`) is checked against the case's budgets
@@ -159,15 +165,106 @@ pub fn axis_names(axis: Axis) -> &'static [&'static str] {
     })
 }
 
-/// The facts of an integrator by name: those of its first registered variant in the family
-/// table (its kind and twin do not depend on the chart it runs on); None for a name no family
-/// registers.
-pub fn integrator_info(integrator: &str) -> Option<MethodInfo> {
+/// The facts of every method the families register, by integrator name: the table a summary
+/// carries (`Summary::methods`, docs/schemas.md "Methods and families"). The one place that
+/// gathers it: a catalogue other than the compiled-in one changes this function only.
+///
+/// A name registered more than once (on several charts, by several families) has one entry:
+/// its facts are those of its first registration in table order, except the facts that depend
+/// on the chart (`summary::methods::CHART_FACTS`: RK4 is RKMK4 on a Lie-group chart, Gauss is
+/// symplectic on a vector space and not on a group), which hold when any registration has
+/// them, with those parameterizations listed (`lie_group_params`, `symplectic_params`). Two
+/// registrations of one name that state other facts differently are a bug of the table
+/// ([`method_conflicts`], asserted empty by a test); the table keeps the first.
+///
+/// # Example
+///
+/// ```
+/// use mbdbench::integrate::MethodKind;
+///
+/// let table = mbdbench::catalogue::methods();
+/// let rk4 = table.get("rk4").unwrap();
+/// assert_eq!((rk4.kind, rk4.order, rk4.implicit), (MethodKind::Explicit, 4, false));
+/// assert!(rk4.lie_group && rk4.lie_group_params.iter().any(|p| p == "so3"));
+/// let gauss6 = table.get("gauss6").unwrap();
+/// assert!(gauss6.symplectic_params.iter().any(|p| p == "quat"));
+/// assert!(!gauss6.symplectic_params.iter().any(|p| p == "so3"));
+/// assert_eq!(table.get("gauss6_kahan").unwrap().twin_of.as_deref(), Some("gauss6"));
+/// ```
+pub fn methods() -> Methods {
+    methods_in(FAMILIES)
+}
+
+/// The facts of every method `families` register (as [`methods`] for the family table): the
+/// table of a run made with a catalogue's families ([`families_of`]).
+pub fn methods_in(families: &[&'static Family]) -> Methods {
+    gather(families.iter().flat_map(|f| f.variants().iter())).0
+}
+
+/// The families a run over `problems` was made with: the family table's, each replaced by the
+/// copy the problems are bound to (a catalogue's, with the methods it registered:
+/// `Catalogue::problems`).
+pub fn families_of(problems: &[Box<dyn crate::problem::Problem>]) -> Vec<&'static Family> {
     FAMILIES
         .iter()
-        .flat_map(|f| f.variants().iter())
-        .find(|v| v.integrator == integrator)
-        .map(|v| v.info)
+        .map(|f| {
+            problems
+                .iter()
+                .map(|p| p.family())
+                .find(|g| g.model == f.model)
+                .unwrap_or(f)
+        })
+        .collect()
+}
+
+/// The registrations of one name whose facts (the chart-dependent ones aside) differ from its
+/// first registration's, one sentence each naming both; empty for a sound table.
+pub fn method_conflicts() -> Vec<String> {
+    gather(FAMILIES.iter().flat_map(|f| f.variants().iter())).1
+}
+
+/// The table of `variants` and the conflicts found building it (see [`methods`]).
+fn gather<'a>(variants: impl Iterator<Item = &'a Variant>) -> (Methods, Vec<String>) {
+    let mut table = Methods::default();
+    let mut first: BTreeMap<&str, (&str, &str)> = BTreeMap::new();
+    let mut conflicts = vec![];
+    for v in variants {
+        let facts = match table.get(v.integrator) {
+            None => {
+                first.insert(v.integrator, (v.param, v.formulation));
+                MethodFacts::of(&v.info, v.param)
+            }
+            Some(f) => {
+                let mut f = f.clone();
+                if !f.add(&v.info, v.param) {
+                    let (p, form) = first.get(v.integrator).copied().unwrap_or_default();
+                    conflicts.push(format!(
+                        "{} on {}/{} states other facts than on {p}/{form}",
+                        v.integrator, v.param, v.formulation
+                    ));
+                }
+                f
+            }
+        };
+        table.insert(v.integrator, facts);
+    }
+    (table, conflicts)
+}
+
+/// The `model` keys of the families, in table order: the list a summary carries
+/// (`Summary::families`).
+pub fn family_models() -> Vec<String> {
+    FAMILIES.iter().map(|f| f.model.to_string()).collect()
+}
+
+/// The method facts a reader of `summary` goes by: the summary's own table when it has one,
+/// else (a summary written before the table existed) the compiled-in catalogue's
+/// ([`methods`]).
+pub fn methods_of(summary: &Summary) -> Cow<'_, Methods> {
+    match &summary.methods {
+        Some(m) => Cow::Borrowed(m),
+        None => Cow::Owned(methods()),
+    }
 }
 
 /// The place of `name` in [`axis_names`] (`usize::MAX` for a name no family has).
@@ -232,4 +329,76 @@ pub fn report_order(r: &Record) -> (String, String, [usize; 3], u64, u64) {
         r.dt.map_or(0, |x| u64::MAX - x.to_bits()),
         r.tol.map_or(0, |x| u64::MAX - x.to_bits()),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::{MethodInfo, MethodKind};
+
+    /// No two registrations of one integrator name, in any family or on any chart, state
+    /// different facts (`lie_group` aside, which the table keeps per parameterization): the
+    /// table keyed by name loses nothing.
+    #[test]
+    fn registrations_of_a_name_agree() {
+        assert_eq!(method_conflicts(), Vec::<String>::new());
+    }
+
+    /// The table has every registered integrator, with the facts of each of its
+    /// registrations, and lists a parameterization under `lie_group_params` (and
+    /// `symplectic_params`) exactly when a registration of the method on it runs on a Lie
+    /// group (is symplectic), and then every registration on it does: the lists are facts of
+    /// the name and the chart.
+    #[test]
+    fn the_table_holds_every_registration() {
+        let table = methods();
+        let all: Vec<&Variant> = FAMILIES.iter().flat_map(|f| f.variants().iter()).collect();
+        for v in &all {
+            let f = table.get(v.integrator).expect("a registered name");
+            assert!(f.agrees_with(&v.info), "{}", v.integrator);
+            for (fact, params, holds) in [
+                ("lie_group", &f.lie_group_params, v.info.lie_group),
+                ("symplectic", &f.symplectic_params, v.info.symplectic),
+            ] {
+                let listed = params.iter().any(|p| p == v.param);
+                assert_eq!(listed, holds, "{fact}: {} on {}", v.integrator, v.param);
+            }
+        }
+        let names: std::collections::BTreeSet<&str> = all.iter().map(|v| v.integrator).collect();
+        assert_eq!(table.len(), names.len());
+        assert!(table.check().is_ok());
+        // The chart-dependent fact: rk4 runs as RKMK4 on so3 and as RK4 on the Euler charts.
+        let rk4 = table.get("rk4").unwrap();
+        assert!(rk4.lie_group_params.iter().any(|p| p == "so3"));
+        assert!(!rk4.lie_group_params.iter().any(|p| p == "euler_zyx"));
+        assert_eq!(
+            family_models().first().map(String::as_str),
+            Some(FAMILIES[0].model)
+        );
+    }
+
+    /// Two registrations of one name with different facts are a conflict naming both; the
+    /// table keeps the first one's facts.
+    #[test]
+    fn a_conflict_is_found_and_the_first_wins() {
+        let variant = |param, info| Variant {
+            param,
+            integrator: "m",
+            formulation: "body",
+            info,
+            index: 0,
+            runner: crate::problem::Runner::new(()),
+        };
+        let explicit = MethodInfo::new("m", MethodKind::Explicit, 2);
+        let implicit = explicit.with_implicit(true).with_lie_group(true);
+        let vs = [variant("so3", explicit), variant("quat", implicit)];
+        let (table, conflicts) = gather(vs.iter());
+        let m = table.get("m").unwrap();
+        assert!(!m.implicit && m.lie_group_params == ["quat"]);
+        assert_eq!(conflicts.len(), 1);
+        assert!(
+            conflicts[0].contains("m on quat/body") && conflicts[0].contains("so3/body"),
+            "{conflicts:?}"
+        );
+    }
 }

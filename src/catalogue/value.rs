@@ -211,12 +211,18 @@ impl Catalogue {
             }
         }
         for i in &filter.integrator {
-            if !fams.iter().any(|f| f.variants().iter().any(|v| v.integrator == i)) {
+            if !fams
+                .iter()
+                .any(|f| f.variants().iter().any(|v| v.integrator == i))
+            {
                 bad.push(format!("--integrator {i}"));
             }
         }
         for f in &filter.formulation {
-            if !fams.iter().any(|x| x.axes.formulations.contains(&f.as_str())) {
+            if !fams
+                .iter()
+                .any(|x| x.axes.formulations.contains(&f.as_str()))
+            {
                 bad.push(format!("--formulation {f}"));
             }
         }

@@ -148,7 +148,13 @@ mod tests {
             "{e}"
         );
         assert!(!e.contains("valid --param"), "{e}");
-        assert!(check_variant_names(&VariantFilter::default(), &crate::catalogue::Catalogue::builtin()).is_ok());
+        assert!(
+            check_variant_names(
+                &VariantFilter::default(),
+                &crate::catalogue::Catalogue::builtin()
+            )
+            .is_ok()
+        );
         assert!(case_help().contains("nine_spring") && scene_help().contains("spin_d0"));
     }
 }

@@ -200,7 +200,7 @@ pub fn run_catalogue(
     }
     records.sort_by_key(crate::catalogue::report_order);
     // The facts of the methods this build registers, and those of a merged run's kept records.
-    let mut methods = crate::catalogue::methods();
+    let mut methods = crate::catalogue::methods_in(&crate::catalogue::families_of(&problems));
     if let Some(kept) = opts.base.as_ref().and_then(|b| b.methods.as_ref()) {
         methods.extend_missing(kept);
     }
