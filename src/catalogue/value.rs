@@ -239,6 +239,23 @@ impl Catalogue {
 
     /// The compiled problems of the selected cases and scenes, each bound to this catalogue's
     /// copy of its family (so its variants include the registered methods).
+    ///
+    /// # Example
+    ///
+    /// ```
+    /// use mbdbench::catalogue::Catalogue;
+    /// use mbdbench::methods::{builtin::Cg3, Fixed, Where};
+    /// use mbdbench::problem::{Stepping, Want};
+    ///
+    /// let cat = Catalogue::builtin().with_method("my_cg3", Where::LieGroup, Fixed(Cg3)).unwrap();
+    /// let cases = cat.cases().unwrap();
+    /// let p = cat.problems(&cases, &["nine_spring".into()], &["two_angles".into()]).unwrap();
+    /// let v = p[0].family().find("so3", "my_cg3", "body").unwrap();
+    /// let out = p[0].run(v, Stepping::Dt(1e-2), Want::Timing).unwrap();
+    /// assert!(out.failure.is_none() && out.stats.steps > 0);
+    /// // Not on a chart that is no Lie group.
+    /// assert!(p[0].family().find("quat", "my_cg3", "body").is_none());
+    /// ```
     pub fn problems(
         &self,
         cases: &[Case],

@@ -137,6 +137,18 @@ impl PartialEq for Variant {
 
 /// A family's run function of one variant, its type known only to the family: one downcast
 /// per run, never per step.
+///
+/// # Example
+///
+/// ```
+/// use mbdbench::problem::Runner;
+///
+/// type RunFn = fn(f64) -> f64;
+/// let r = Runner::new((|h: f64| 2.0 * h) as RunFn);
+/// assert_eq!(r.get::<RunFn>().map(|f| f(1.5)), Some(3.0));
+/// // Another family's type is not this one's.
+/// assert!(r.get::<fn(f64) -> u32>().is_none());
+/// ```
 #[derive(Clone)]
 pub struct Runner(std::sync::Arc<dyn std::any::Any + Send + Sync>);
 
