@@ -6,7 +6,9 @@
 //! rigid body's charts and formulations, the flexible beam's ODE forms), through the same
 //! instantiation the built-in methods take (`model::ode_variants`, the family's
 //! `family::ode_variants`, monomorphised per system); [`Catalogue::with_cases`] and
-//! [`Catalogue::with_references`] point it at the user's folders.
+//! [`Catalogue::with_references`] point it at the user's folders;
+//! [`Catalogue::with_structural_method`] registers a structural method written once for every
+//! second-order system (`methods::second_order`), on the beam's structural forms.
 //!
 //! A registered method extends each family it applies to: the catalogue holds its own copy of
 //! the family (`problem::Variants::Extended`, the family's table plus the new variants, and the
@@ -38,6 +40,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::case::{Case, CaseError};
+use crate::methods::second_order::SecondOrderMethod;
 use crate::methods::{OdeMethod, Where};
 use crate::problem::{Axes, Family, Problem, Variant, Variants};
 
@@ -84,11 +87,32 @@ impl Catalogue {
     /// Registers the first-order method `m` under `name` on every system of every family where
     /// it applies (`at`).
     pub fn with_method<M: OdeMethod>(
-        mut self,
+        self,
         name: &'static str,
         at: Where,
         m: M,
     ) -> Result<Catalogue, RegisterError> {
+        self.check_name(name)?;
+        let m = std::sync::Arc::new(m);
+        let variants = crate::model::ode_variants(name, at, &m);
+        self.register(name, variants)
+    }
+
+    /// Registers the structural method `m` under `name` on every second-order system of every
+    /// family (the flexible beam's `fe_exact`, `modal_stiffened` and `modal_linear`).
+    pub fn with_structural_method<M: SecondOrderMethod>(
+        self,
+        name: &'static str,
+        m: M,
+    ) -> Result<Catalogue, RegisterError> {
+        self.check_name(name)?;
+        let m = std::sync::Arc::new(m);
+        let variants = crate::model::second_order_variants(name, &m);
+        self.register(name, variants)
+    }
+
+    /// Refuses a name that is not a lower-case identifier or is taken.
+    fn check_name(&self, name: &'static str) -> Result<(), RegisterError> {
         let refuse = |message: String| RegisterError {
             name: name.into(),
             message,
@@ -105,10 +129,11 @@ impl Catalogue {
                     .into(),
             ));
         }
-        if let Some(f) = self.families.iter().find(|f| {
+        let taken = |f: &&&Family| {
             f.axes.integrators.contains(&name) || f.variants().iter().any(|v| v.integrator == name)
-        }) {
-            return Err(refuse(format!(
+        };
+        match self.families.iter().find(taken) {
+            Some(f) => Err(refuse(format!(
                 "already registered in the family `{}`{}",
                 f.model,
                 if self.registered.contains(&name) {
@@ -116,11 +141,19 @@ impl Catalogue {
                 } else {
                     " (a built-in integrator)"
                 }
-            )));
+            ))),
+            None => Ok(()),
         }
-        let m = std::sync::Arc::new(m);
+    }
+
+    /// Extends each family by its variants of the method `name`; refused when there are none.
+    fn register(
+        mut self,
+        name: &'static str,
+        variants: Vec<(&'static str, Vec<Variant>)>,
+    ) -> Result<Catalogue, RegisterError> {
         let mut added = 0;
-        for (model, variants) in crate::model::ode_variants(name, at, &m) {
+        for (model, variants) in variants {
             if variants.is_empty() {
                 continue;
             }
@@ -130,9 +163,10 @@ impl Catalogue {
             }
         }
         if added == 0 {
-            return Err(refuse(
-                "applies to no system of the catalogue's families".into(),
-            ));
+            return Err(RegisterError {
+                name: name.into(),
+                message: "applies to no system of the catalogue's families".into(),
+            });
         }
         self.registered.push(name);
         Ok(self)

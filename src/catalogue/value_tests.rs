@@ -116,3 +116,48 @@ fn taken_and_malformed_names_are_refused() {
         .unwrap_err();
     assert!(e.to_string().contains("earlier registration"), "{e}");
 }
+
+#[test]
+fn a_registered_structural_method_runs_as_the_builtin_it_copies() {
+    // Invariant: Newmark registered from outside as a structural method reaches the beam's
+    // three second-order forms only, and on each gives the built-in newmark's outcome bit for
+    // bit on a spin-up scene at its quick step.
+    let cat = Catalogue::builtin()
+        .with_structural_method(
+            "newmark_twin",
+            crate::structural::newmark::Newmark::new(Default::default()).unwrap(),
+        )
+        .unwrap();
+    assert!(
+        !cat.find_family("rigid_body")
+            .unwrap()
+            .axes
+            .integrators
+            .contains(&"newmark_twin")
+    );
+    let cases = cat.cases().unwrap();
+    let mut p = cat
+        .problems(&cases, &["flexible_beam".into()], &["spinup_w4".into()])
+        .unwrap()
+        .pop()
+        .unwrap();
+    p.attach_reference(&std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("references"))
+        .unwrap();
+    let family = p.family();
+    let twins: Vec<_> = family
+        .variants()
+        .iter()
+        .filter(|v| v.integrator == "newmark_twin")
+        .collect();
+    let forms: Vec<&str> = twins.iter().map(|v| v.formulation).collect();
+    assert_eq!(forms, ["fe_exact", "modal_stiffened", "modal_linear"]);
+    for twin in twins {
+        let newmark = family.find("none", "newmark", twin.formulation).unwrap();
+        let dt = p.ladder(true, &twin.info)[0];
+        let a = p.run(twin, Stepping::Dt(dt), Want::Scored).unwrap();
+        let b = p.run(newmark, Stepping::Dt(dt), Want::Scored).unwrap();
+        assert_eq!(a.stats, b.stats, "{}", twin.formulation);
+        assert_eq!(format!("{:?}", a.scores), format!("{:?}", b.scores));
+        assert_eq!(a.failure.is_some(), b.failure.is_some());
+    }
+}

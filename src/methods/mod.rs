@@ -106,6 +106,7 @@ use crate::run::{
 };
 
 pub mod builtin;
+pub mod second_order;
 #[cfg(test)]
 mod tests;
 

@@ -223,6 +223,31 @@ pub fn none_param_table<R: Clone + std::any::Any + Send + Sync>(
     )
 }
 
+/// What a family makes of a method registered from outside the crate
+/// (`catalogue::Catalogue::with_method`, `with_structural_method`): its variants on each of the
+/// family's systems of the method's kind, numbered from 0 in the family's order, built as the
+/// family builds its own table from the built-ins. None by default: a family without systems of
+/// that kind. Each family implements it on `family::Systems` (`model::families!` calls it).
+pub trait Instantiate {
+    /// A first-order method on the family's first-order systems.
+    fn ode<M: crate::methods::OdeMethod + Clone>(
+        name: &'static str,
+        at: crate::methods::Where,
+        m: M,
+    ) -> Vec<Variant> {
+        let _ = (name, at, m);
+        vec![]
+    }
+    /// A structural method on the family's second-order systems.
+    fn second_order<M: crate::methods::second_order::SecondOrderMethod + Clone>(
+        name: &'static str,
+        m: M,
+    ) -> Vec<Variant> {
+        let _ = (name, m);
+        vec![]
+    }
+}
+
 /// Compiles one scene of a validated case into a runnable problem.
 pub type Compile = fn(&Case, &Scene) -> Result<Box<dyn Problem>, CaseError>;
 

@@ -418,3 +418,10 @@ fn variants() -> &'static [Variant] {
 fn compile(case: &Case, scene: &Scene) -> Result<Box<dyn Problem>, CaseError> {
     Ok(Box::new(FiberProblem::new(case, scene)?))
 }
+
+/// No system of the method faces' kinds: the column's schemes run on path-dependent
+/// structures, its algorithms on load paths (a method registered from outside the crate does
+/// not reach it).
+pub struct Systems;
+
+impl crate::problem::Instantiate for Systems {}

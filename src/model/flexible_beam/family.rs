@@ -15,10 +15,7 @@ use crate::problem::figures::{
 };
 use crate::problem::{Axes, Axis, Column, Family, Metric, Problem, Stepping, Variant};
 use crate::run::{Observe, RunOutput};
-use crate::structural::gen_alpha::GenAlpha;
-use crate::structural::hht::Hht;
 use crate::structural::method::Method;
-use crate::structural::newmark::Newmark;
 use crate::structural::newton::NewtonOptions;
 
 use super::fe::Fe;
@@ -27,6 +24,7 @@ use super::modal::Modal;
 use super::observe::{BeamObs, Beamlike};
 use super::ode::{AsOde, run_ode};
 use super::run::run_structural;
+use crate::methods::second_order::{SecondOrderMethod, VisitSecondOrder};
 use crate::methods::{OdeMethod, Visit, Where};
 use crate::structural::gen_alpha_i3::GenAlphaI3;
 use std::sync::Arc;
@@ -269,35 +267,6 @@ fn fe_model(s: &BeamSetup) -> impl Fn(super::base::Base) -> Result<Fe, String> +
     move |base| Fe::new(s.scene.beam, s.numerics.elements, base)
 }
 
-fn fe_newmark(s: &BeamSetup, st: Stepping, o: &Observe) -> Result<RunOutput<BeamObs>, String> {
-    structural(s, st, o, &fe_model(s), Newmark::new(newton())?)
-}
-fn fe_hht(s: &BeamSetup, st: Stepping, o: &Observe) -> Result<RunOutput<BeamObs>, String> {
-    structural(s, st, o, &fe_model(s), Hht::new(-0.05, newton())?)
-}
-fn fe_gen_alpha(s: &BeamSetup, st: Stepping, o: &Observe) -> Result<RunOutput<BeamObs>, String> {
-    structural(s, st, o, &fe_model(s), GenAlpha::new(0.9, newton())?)
-}
-
-/// The structural methods' facts (the same on every formulation).
-fn infos() -> [(&'static str, MethodInfo); 3] {
-    let o = newton();
-    [
-        (
-            "newmark",
-            Method::<Fe>::info(&Newmark::new(o).expect("valid")),
-        ),
-        (
-            "hht",
-            Method::<Fe>::info(&Hht::new(-0.05, o).expect("valid")),
-        ),
-        (
-            "gen_alpha",
-            Method::<Fe>::info(&GenAlpha::new(0.9, o).expect("valid")),
-        ),
-    ]
-}
-
 /// A modal formulation under a structural method.
 fn modal_structural<M: Method<Modal>>(
     s: &BeamSetup,
@@ -403,61 +372,60 @@ impl Visit for OdeRows {
     }
 }
 
-/// Method `m` (listed as `name`) on every ODE form that runs it: the variants a catalogue
-/// adds for a method registered from outside the crate.
-pub fn ode_variants<M: OdeMethod>(name: &'static str, at: Where, m: M) -> Vec<Variant> {
-    let mut rows = OdeRows(vec![]);
-    rows.method(name, at, m);
-    crate::problem::none_param_table(rows.0)
+/// What the beam makes of a method registered from outside the crate: a first-order method on
+/// every ODE form, a structural method on every second-order form.
+pub struct Systems;
+
+impl crate::problem::Instantiate for Systems {
+    fn ode<M: OdeMethod + Clone>(name: &'static str, at: Where, m: M) -> Vec<Variant> {
+        let mut rows = OdeRows(vec![]);
+        rows.method(name, at, m);
+        crate::problem::none_param_table(rows.0)
+    }
+    fn second_order<M: SecondOrderMethod + Clone>(name: &'static str, m: M) -> Vec<Variant> {
+        let mut rows = StructuralRows(vec![]);
+        rows.method(name, m);
+        crate::problem::none_param_table(rows.0)
+    }
 }
 
-/// One row of the table per `(integrator, formulation)`.
-macro_rules! rows {
-    (structural $v:ident, $info:expr, $form:literal) => {
-        $v.push((
-            "newmark",
-            $form,
-            $info[0].1,
-            Arc::new(|s, st, o| modal_structural(s, st, o, $form, Newmark::new(newton())?)),
-        ));
-        $v.push((
-            "hht",
-            $form,
-            $info[1].1,
-            Arc::new(|s, st, o| modal_structural(s, st, o, $form, Hht::new(-0.05, newton())?)),
-        ));
-        $v.push((
-            "gen_alpha",
-            $form,
-            $info[2].1,
-            Arc::new(|s, st, o| modal_structural(s, st, o, $form, GenAlpha::new(0.9, newton())?)),
-        ));
-    };
+/// The second-order forms, in table order: the structural methods run them.
+const SECOND_ORDER_FORMS: [&str; 3] = ["fe_exact", "modal_stiffened", "modal_linear"];
+
+/// The structural rows: each method it is handed on every second-order form, its facts taken
+/// on `fe_exact` (they do not depend on the form).
+struct StructuralRows(Vec<(&'static str, &'static str, MethodInfo, RunFn)>);
+
+impl VisitSecondOrder for StructuralRows {
+    fn method<M: SecondOrderMethod>(&mut self, name: &'static str, m: M) {
+        let info = Method::<Fe>::info(&m.on::<Fe>());
+        let m = Arc::new(m);
+        for form in SECOND_ORDER_FORMS {
+            let m = Arc::clone(&m);
+            let run: RunFn = if form == "fe_exact" {
+                Arc::new(move |s, st, o| structural(s, st, o, &fe_model(s), m.on::<Fe>()))
+            } else {
+                Arc::new(move |s, st, o| modal_structural(s, st, o, form, m.on::<Modal>()))
+            };
+            self.0.push((name, form, info, run));
+        }
+    }
 }
 
 /// The family's table: the variant and its run function.
 pub fn table() -> &'static [Variant] {
     static TABLE: std::sync::OnceLock<Vec<Variant>> = std::sync::OnceLock::new();
     TABLE.get_or_init(|| {
-        let info = infos();
         let mut ode_rows = OdeRows(vec![]);
         crate::methods::builtin::each(&mut ode_rows);
-        // Each form's ODE rows, in method order.
-        let odes = |form: &str, rows: &mut Vec<_>| {
-            for r in ode_rows.0.iter().filter(|r| r.1 == form) {
+        let mut structural_rows = StructuralRows(vec![]);
+        crate::methods::second_order::each(&mut structural_rows);
+        // Each form's rows: the structural methods', then the ODE methods', in method order.
+        let mut rows: Vec<(&'static str, &'static str, MethodInfo, RunFn)> = vec![];
+        for form in SECOND_ORDER_FORMS.iter().chain(&ODE_FORMS[2..]) {
+            for r in structural_rows.0.iter().chain(&ode_rows.0).filter(|r| r.1 == *form) {
                 rows.push((r.0, r.1, r.2, Arc::clone(&r.3)));
             }
-        };
-        let mut rows: Vec<(&'static str, &'static str, MethodInfo, RunFn)> = vec![
-            ("newmark", "fe_exact", info[0].1, Arc::new(fe_newmark)),
-            ("hht", "fe_exact", info[1].1, Arc::new(fe_hht)),
-            ("gen_alpha", "fe_exact", info[2].1, Arc::new(fe_gen_alpha)),
-        ];
-        rows!(structural rows, info, "modal_stiffened");
-        odes("modal_stiffened", &mut rows);
-        rows!(structural rows, info, "modal_linear");
-        for form in &ODE_FORMS[1..] {
-            odes(form, &mut rows);
         }
         let i3 = Method::<Modal>::info(&GenAlphaI3::new(0.9, newton()).expect("valid"));
         rows.push((

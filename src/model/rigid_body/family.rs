@@ -101,14 +101,18 @@ fn seam_variants(vs: impl Iterator<Item = registry::Variant>) -> Vec<Variant> {
         .collect()
 }
 
-/// Method `m` (listed as `name`) on every chart and formulation where it applies: the
-/// variants a catalogue adds for a method registered from outside the crate.
-pub fn ode_variants<M: crate::methods::OdeMethod>(
-    name: &'static str,
-    at: crate::methods::Where,
-    m: M,
-) -> Vec<Variant> {
-    seam_variants(registry::instantiate(name, at, m).into_iter())
+/// What the rigid body makes of a method registered from outside the crate: a first-order
+/// method on every chart and formulation where it applies; no second-order system.
+pub struct Systems;
+
+impl crate::problem::Instantiate for Systems {
+    fn ode<M: crate::methods::OdeMethod + Clone>(
+        name: &'static str,
+        at: crate::methods::Where,
+        m: M,
+    ) -> Vec<Variant> {
+        seam_variants(registry::instantiate(name, at, m).into_iter())
+    }
 }
 
 /// A rigid-body run's costs, measured on the catalogue's quick tier (this machine, one job):
