@@ -29,10 +29,10 @@ use mbdbench::methods::{Fixed, FixedStepMethod, Where};
 use std::marker::PhantomData;
 
 /// Ralston's third-order method, for every system.
-struct Ralston3;
+pub struct Ralston3;
 
 /// Ralston's method stepping systems of type `S` (it keeps no workspace).
-struct Ralston3On<S>(PhantomData<S>);
+pub struct Ralston3On<S>(PhantomData<S>);
 
 impl<S: System> FixedStep<S> for Ralston3On<S> {
     fn info(&self) -> MethodInfo {

@@ -102,3 +102,52 @@ fn a_registered_method_goes_through_run_report_advise_and_gate() {
     );
     assert_eq!(code, 0, "the gate written for the method passes");
 }
+
+#[test]
+fn the_registered_method_keeps_its_order_against_the_stored_reference() {
+    // Invariant: Ralston's method, written once and registered from outside, is third order
+    // against nine_spring's stored reference (two_angles, rotation error) on an additive chart
+    // (quat) and, through the Munthe-Kaas stages, on the Lie-group chart so3, in both
+    // formulations: each halving of the step divides the error by 8 (local orders within 0.2
+    // of 3).
+    let cat = mbdbench::catalogue::Catalogue::builtin()
+        .with_method(
+            "ralston3",
+            mbdbench::methods::Where::Everywhere,
+            mbdbench::methods::Fixed(byo::Ralston3),
+        )
+        .unwrap();
+    let cases = cat.cases().unwrap();
+    let mut p = cat
+        .problems(&cases, &["nine_spring".into()], &["two_angles".into()])
+        .unwrap()
+        .pop()
+        .unwrap();
+    p.attach_reference(&mbdbench::cli::default_references())
+        .unwrap();
+    for (param, formulation) in [("quat", "body"), ("so3", "body"), ("so3", "spatial")] {
+        let v = p.family().find(param, "ralston3", formulation).unwrap();
+        let errs: Vec<f64> = [1.0e-2, 5.0e-3, 2.5e-3]
+            .iter()
+            .map(|&dt| {
+                let out = p
+                    .run(
+                        v,
+                        mbdbench::problem::Stepping::Dt(dt),
+                        mbdbench::problem::Want::Scored,
+                    )
+                    .unwrap();
+                assert!(out.failure.is_none(), "{param}/{formulation} at {dt}");
+                out.scores.get("rotation_error_max").unwrap()
+            })
+            .collect();
+        eprintln!("ralston3 {param}/{formulation}: rotation errors {errs:?}");
+        for w in errs.windows(2) {
+            let order = (w[0] / w[1]).log2();
+            assert!(
+                (order - 3.0).abs() < 0.2,
+                "{param}/{formulation}: {errs:?}, order {order}"
+            );
+        }
+    }
+}

@@ -29,6 +29,7 @@ fn real_quick_tier_passes_gates_and_baseline() {
         skip: true,
         cap_s: mbdbench::suite::skip::DEFAULT_CAP_S,
         cost: mbdbench::cost::CostTable::embedded(),
+        catalogue: mbdbench::catalogue::Catalogue::builtin(),
     };
     let problems = mbdbench::catalogue::problems(&cases, &[], &[]).unwrap();
     let summary = mbdbench::suite::run_catalogue(

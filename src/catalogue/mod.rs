@@ -196,25 +196,9 @@ pub fn methods() -> Methods {
 }
 
 /// The facts of every method `families` register (as [`methods`] for the family table): the
-/// table of a run made with a catalogue's families ([`families_of`]).
+/// table of a run made with a catalogue's families (`Catalogue::families`).
 pub fn methods_in(families: &[&'static Family]) -> Methods {
     gather(families.iter().flat_map(|f| f.variants().iter())).0
-}
-
-/// The families a run over `problems` was made with: the family table's, each replaced by the
-/// copy the problems are bound to (a catalogue's, with the methods it registered:
-/// `Catalogue::problems`).
-pub fn families_of(problems: &[Box<dyn crate::problem::Problem>]) -> Vec<&'static Family> {
-    FAMILIES
-        .iter()
-        .map(|f| {
-            problems
-                .iter()
-                .map(|p| p.family())
-                .find(|g| g.model == f.model)
-                .unwrap_or(f)
-        })
-        .collect()
 }
 
 /// The registrations of one name whose facts (the chart-dependent ones aside) differ from its

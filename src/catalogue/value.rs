@@ -205,15 +205,6 @@ impl Catalogue {
         self.families.iter().copied().find(|f| f.model == model)
     }
 
-    /// The family of a loaded case (its `model` key), as this catalogue extends it.
-    pub fn family_of(&self, case: &Case) -> Result<&'static Family, CaseError> {
-        self.find_family(case.model()).ok_or_else(|| CaseError {
-            file: format!("cases/{}.toml", case.name),
-            key: "model".into(),
-            message: format!("no family `{}` in this catalogue", case.model()),
-        })
-    }
-
     /// The family of a case: this catalogue's copy when it has the case's family, else the
     /// built-in table's (`catalogue::family_of`).
     pub fn family_or_builtin(&self, case: &Case) -> &'static Family {

@@ -177,6 +177,7 @@ pub(super) fn cmd_run_into(common: &Common, a: &RunArgs) -> Result<(i32, PathBuf
         skip: !a.no_skip,
         cap_s: a.max_run_s,
         cost: crate::cost::CostTable::embedded(),
+        catalogue: common.catalogue(),
     };
     let (out, how) = match where_to_write(&cases, &a.out, &opts.selection(&filter)) {
         Target::Replace(out) => (out, None),

@@ -57,6 +57,9 @@ pub struct RunOptions {
     /// The cost table that predicts a run's time (`crate::cost`; the committed one by
     /// default, `CostTable::empty()` to predict nothing).
     pub cost: crate::cost::CostTable,
+    /// The catalogue the problems were compiled with: the summary's `methods` table lists
+    /// every method it registers.
+    pub catalogue: crate::catalogue::Catalogue,
 }
 
 impl RunOptions {
@@ -200,7 +203,7 @@ pub fn run_catalogue(
     }
     records.sort_by_key(crate::catalogue::report_order);
     // The facts of the methods this build registers, and those of a merged run's kept records.
-    let mut methods = crate::catalogue::methods_in(&crate::catalogue::families_of(&problems));
+    let mut methods = crate::catalogue::methods_in(opts.catalogue.families());
     if let Some(kept) = opts.base.as_ref().and_then(|b| b.methods.as_ref()) {
         methods.extend_missing(kept);
     }

@@ -114,6 +114,7 @@ pub fn run(
         skip: true,
         cap_s: mbdbench::suite::skip::DEFAULT_CAP_S,
         cost: mbdbench::cost::CostTable::embedded(),
+        catalogue: mbdbench::catalogue::Catalogue::builtin(),
     };
     let s = suite::run_catalogue(problems(case_name, scenes), &filter, &opts).unwrap();
     let _ = std::fs::remove_dir_all(&out);

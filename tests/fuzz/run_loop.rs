@@ -590,6 +590,7 @@ proptest! {
             skip: true,
             cap_s: mbdbench::suite::skip::DEFAULT_CAP_S,
             cost: mbdbench::cost::CostTable::embedded(),
+            catalogue: mbdbench::catalogue::Catalogue::builtin(),
         };
         let filter = VariantFilter {
             param: vec![param.to_string()],
